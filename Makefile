@@ -1,0 +1,54 @@
+# centaur: the two commands a user needs.
+#   make demo   installs missing Debian packages, builds, runs the main job with embedded defaults
+#   make test   installs missing Debian packages, builds, runs the whole test suite (ctest)
+BUILD  ?= build
+JOBS   ?= $(shell nproc)
+OUT    ?= out
+CENTAUR = $(BUILD)/src/cli/centaur
+
+# Every Debian package the project needs (build, run, render, plot).
+DEBS = cmake make g++ pkg-config libeigen3-dev coinor-libipopt-dev libopenblas0-pthread \
+       libmujoco-dev libqhull-dev libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev \
+       libhdf5-dev libcli11-dev nlohmann-json3-dev libosmesa6-dev libstb-dev ffmpeg gnuplot-nox
+
+.PHONY: all deps configure build demo test bench clean
+
+all: build
+
+deps:
+	@missing=""; for p in $(DEBS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = "0" ]; then \
+	    echo "Installing missing Debian packages:$$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null || exit 1; \
+	  else \
+	    echo "Missing Debian packages. Run:"; echo "  sudo apt-get install -y$$missing"; exit 1; \
+	  fi; \
+	fi
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+
+configure: deps $(BUILD)/CMakeCache.txt
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	$(CENTAUR) bench planner
+
+demo: build
+	@mkdir -p $(OUT)
+	$(CENTAUR) plan squat-jump --out $(OUT)/squat-jump.h5
+	$(CENTAUR) plan half-squat-jump --out $(OUT)/primitives.h5 --append
+	$(CENTAUR) inspect $(OUT)/squat-jump.h5
+	$(CENTAUR) plot $(OUT)/squat-jump.h5 --out $(OUT)/squat-jump.png
+	@echo "Demo outputs are in $(OUT)/"
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,69 @@
+#pragma once
+// Strict YAML reading: every key must be known, every value inside its documented range.
+// A reader wraps one mapping; each get() marks its key as consumed, finish() rejects the rest.
+// Errors name the file, the full dotted key and the allowed range (InputError, exit code 2).
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "common/error.hpp"
+
+namespace centaur {
+
+class YamlReader {
+ public:
+  /// `node` must be a mapping (or null: treated as empty). `file` and `prefix` only label messages.
+  YamlReader(const YAML::Node& node, std::string file, std::string prefix = "");
+
+  bool has(const std::string& key) const;
+
+  /// Optional keys: if present, read and range-check into `value`; otherwise keep `value` (the default).
+  void get(const std::string& key, double& value, double lo, double hi);
+  void get(const std::string& key, int& value, int lo, int hi);
+  void get(const std::string& key, bool& value);
+  void get(const std::string& key, std::string& value, const std::vector<std::string>& allowed = {});
+  /// Fixed-size vector (YAML sequence of exactly value.size() numbers), each element in [lo, hi].
+  void get(const std::string& key, Eigen::Ref<Eigen::VectorXd> value, double lo, double hi);
+  /// Variable-length vector of numbers, each in [lo, hi].
+  void get(const std::string& key, std::vector<double>& value, double lo, double hi);
+
+  /// Sub-mapping reader ("a.b"). The key is marked consumed. Missing key -> empty reader.
+  YamlReader child(const std::string& key);
+  /// The raw node of a key (marked consumed), for sequences of mappings.
+  YAML::Node raw(const std::string& key);
+
+  /// Throws InputError naming every key that was never read.
+  void finish() const;
+
+  const std::string& file() const { return file_; }
+  std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+
+ private:
+  YAML::Node node_;
+  std::string file_;
+  std::string prefix_;
+  std::set<std::string> used_;
+};
+
+/// Parse "a.b.c=value" and set it in `root` (creating mappings), the value parsed as YAML.
+/// Throws InputError for a malformed assignment.
+void applyOverride(YAML::Node& root, const std::string& assignment);
+
+/// Load a YAML file; InputError (naming the file, line and column) if missing or malformed.
+YAML::Node loadYamlFile(const std::string& path);
+
+/// Load YAML from text (embedded defaults); `label` names it in messages.
+YAML::Node loadYamlString(const std::string& text, const std::string& label);
+
+/// Deep merge: every key of `over` replaces or extends the one in `base` (mappings merged recursively).
+YAML::Node mergeYaml(const YAML::Node& base, const YAML::Node& over);
+
+/// Emit as block-style YAML text.
+std::string toYamlString(const YAML::Node& node);
+
+}  // namespace centaur
