@@ -1,0 +1,73 @@
+#pragma once
+// Whole-robot kinematics and dynamics for the controller (floating base + actuated joints), read from an
+// MJCF file. Implemented on MuJoCo's kinematics/dynamics functions with a PRIVATE data buffer: it never
+// reads a simulator's state, only the configuration the controller gives it. No MuJoCo type appears here.
+//
+// Conventions (documented, they cross the library boundary):
+//   generalized coordinates  q = [w_p_base (3), w_quat_base (4: w, x, y, z), joints (n)]   size nq = 7 + n
+//   generalized velocities   v = [w_v_base (3, world frame), b_omega_base (3, BASE frame), joints qd (n)]
+//                            (MuJoCo's free-joint convention)                                 size nv = 6 + n
+//   Frame Jacobians are world-aligned at the frame origin: rows 0-2 linear velocity in W, rows 3-5 angular in W.
+//   Centroidal momentum h = A(q) v = [linear (3, W), angular about the CoM (3, W)].
+//   Bias forces b(q, v) = C(q, v) v + g(q), with M(q) vdot + b = S^T tau + sum J_c^T f_c.
+// Model/Data split: construction allocates everything; update() and all queries never allocate.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace centaur {
+
+using RowMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+struct JointLimits {
+  Eigen::VectorXd q_min, q_max;  ///< [rad] (+-inf for continuous joints)
+  Eigen::VectorXd qd_max;        ///< [rad/s]
+  Eigen::VectorXd tau_max;       ///< [Nm]
+};
+
+class RobotModel {
+ public:
+  /// Loads the MJCF; throws InputError naming the file if it cannot be loaded or has no free joint.
+  explicit RobotModel(const std::string& mjcf_path);
+  ~RobotModel();
+  RobotModel(const RobotModel&) = delete;
+  RobotModel& operator=(const RobotModel&) = delete;
+
+  // ---- description (const) ----
+  int nq() const;  ///< 7 + n
+  int nv() const;  ///< 6 + n
+  int numJoints() const;  ///< n, actuated joints
+  const std::vector<std::string>& jointNames() const;
+  int jointIndex(const std::string& name) const;  ///< -1 if unknown
+  const JointLimits& limits() const;
+  double totalMass() const;
+  /// Frames are bodies or sites of the MJCF, by name; returns -1 if unknown.
+  int frameId(const std::string& name) const;
+  /// The "home" keyframe's joint positions (n), if the MJCF has one (else zeros).
+  Eigen::VectorXd homeJoints() const;
+
+  // ---- state ----
+  /// Set q (nq) and v (nv) and compute kinematics, CoM, mass matrix and bias forces. No allocation.
+  void update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v);
+
+  // ---- queries on the last update(); none allocates (outputs must be pre-sized) ----
+  Eigen::Isometry3d framePose(int frame) const;  ///< w_T_frame
+  void frameJacobian(int frame, Eigen::Ref<RowMatrixXd> J) const;  ///< 6 x nv, world-aligned at the frame origin
+  /// Jacobian of a point given in frame coordinates (3 x nv), e.g. a wheel contact point.
+  void pointJacobian(int frame, const Eigen::Vector3d& f_point, Eigen::Ref<RowMatrixXd> J) const;
+  Eigen::Vector3d com() const;                               ///< w_p_com
+  void comJacobian(Eigen::Ref<RowMatrixXd> J) const;          ///< 3 x nv
+  void centroidalMomentumMatrix(Eigen::Ref<RowMatrixXd> A) const;  ///< 6 x nv
+  void massMatrix(Eigen::Ref<RowMatrixXd> M) const;           ///< nv x nv
+  void biasForces(Eigen::Ref<Eigen::VectorXd> b) const;       ///< nv: C v + g
+  void gravityForces(Eigen::Ref<Eigen::VectorXd> g) const;    ///< nv: g(q)
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace centaur
