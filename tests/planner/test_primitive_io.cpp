@@ -1,0 +1,301 @@
+// ctest-labels: unit
+// The HDF5 primitive database: exact round trip, append/replace, atomic writes, clear errors on bad files.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "planner/primitive_io.hpp"
+#include "synthetic_primitive.hpp"
+
+namespace fs = std::filesystem;
+using centaur::InputError;
+using centaur::RuntimeError;
+using centaur::planner::Primitive;
+using centaur::planner::WriteMode;
+namespace planner = centaur::planner;
+
+namespace {
+
+/// A fresh temporary directory, removed with its contents at the end of the test.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "centaur-io-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> out;
+    for (const auto& e : fs::directory_iterator(path_)) out.push_back(e.path().filename().string());
+    return out;
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Exact equality of every field (datasets bit for bit, metadata exactly).
+void expectSame(const Primitive& a, const Primitive& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_TRUE(a.t == b.t) << "t";
+  EXPECT_TRUE(a.q == b.q) << "q";
+  EXPECT_TRUE(a.nu == b.nu) << "nu";
+  EXPECT_TRUE(a.base_pos == b.base_pos) << "base_pos";
+  EXPECT_TRUE(a.base_quat == b.base_quat) << "base_quat";
+  EXPECT_TRUE(a.base_vel == b.base_vel) << "base_vel";
+  EXPECT_TRUE(a.base_omega == b.base_omega) << "base_omega";
+  EXPECT_TRUE(a.foot_pos == b.foot_pos) << "foot_pos";
+  EXPECT_TRUE(a.foot_pos_rel == b.foot_pos_rel) << "foot_pos_rel";
+  EXPECT_TRUE(a.foot_vel_rel == b.foot_vel_rel) << "foot_vel_rel";
+  EXPECT_TRUE(a.force == b.force) << "force";
+  EXPECT_TRUE(a.contact == b.contact) << "contact";
+  EXPECT_TRUE(a.tau == b.tau) << "tau";
+  EXPECT_TRUE(a.knot_t == b.knot_t) << "knots/t";
+  EXPECT_TRUE(a.knot_x == b.knot_x) << "knots/x";
+  EXPECT_TRUE(a.knot_u == b.knot_u) << "knots/u";
+  EXPECT_TRUE(a.knot_dt == b.knot_dt) << "knots/dt";
+  EXPECT_EQ(a.solve.status, b.solve.status);
+  EXPECT_EQ(a.solve.iterations, b.solve.iterations);
+  EXPECT_EQ(a.solve.solve_time_s, b.solve.solve_time_s);
+  EXPECT_EQ(a.solve.cost, b.solve.cost);
+  EXPECT_EQ(a.solve.max_constraint_violation, b.solve.max_constraint_violation);
+  EXPECT_EQ(a.config_yaml, b.config_yaml);
+  EXPECT_EQ(a.scalars, b.scalars);
+  EXPECT_EQ(a.vectors, b.vectors);
+  EXPECT_EQ(a.strings, b.strings);
+}
+
+template <class F>
+std::string inputErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return std::string("WRONG EXCEPTION TYPE: ") + e.what();
+  }
+  return "NO EXCEPTION";
+}
+
+/// Delete one link (dataset or group) of an existing file with the HDF5 API, to fabricate bad files.
+void deleteLink(const std::string& path, const std::string& link) {
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_GE(H5Ldelete(f, link.c_str(), H5P_DEFAULT), 0);
+  H5Fclose(f);
+}
+
+/// Replace dataset `link` by a double dataset of shape `dims`.
+void replaceDataset(const std::string& path, const std::string& link, std::vector<hsize_t> dims) {
+  deleteLink(path, link);
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+  const hid_t ds = H5Dcreate2(f, link.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  EXPECT_GE(ds, 0);
+  H5Dclose(ds);
+  H5Sclose(space);
+  H5Fclose(f);
+}
+
+}  // namespace
+
+TEST(PrimitiveIo, RoundTripPreservesEveryDatasetAndAttribute) {
+  TempDir dir;
+  const Primitive jump = centaur::test::makeSyntheticJump("squat-jump");
+  const std::string path = dir.file("jump.h5");
+  planner::writePrimitives(path, {jump}, WriteMode::Replace);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"jump.h5"});  // no temporary left behind
+  EXPECT_EQ(planner::listPrimitives(path), std::vector<std::string>{"squat-jump"});
+  const std::vector<Primitive> back = planner::readPrimitives(path);
+  ASSERT_EQ(back.size(), 1u);
+  expectSame(jump, back[0]);
+  expectSame(jump, planner::readPrimitive(path, "squat-jump"));
+}
+
+TEST(PrimitiveIo, EmptyKnotsAndLargeConfigRoundTrip) {
+  TempDir dir;
+  Primitive p = centaur::test::makeSyntheticJump("bare");
+  p.knot_t.resize(0);
+  p.knot_x.resize(0, 37);
+  p.knot_u.resize(0, 31);
+  p.knot_dt.resize(0);
+  p.vectors["empty"] = {};
+  std::ostringstream yaml;  // larger than HDF5's 64 kB compact attribute limit
+  for (int i = 0; i < 5000; ++i) yaml << "key_" << i << ": " << 0.001 * i << "  # ünïcode\n";
+  p.config_yaml = yaml.str();
+  ASSERT_GT(p.config_yaml.size(), 100000u);
+  const std::string path = dir.file("bare.h5");
+  planner::writePrimitive(path, p);
+  expectSame(p, planner::readPrimitive(path, "bare"));
+}
+
+TEST(PrimitiveIo, AppendAddsGroupsKeepsOthersAndReplacesSameName) {
+  TempDir dir;
+  const std::string path = dir.file("db.h5");
+  const Primitive a = centaur::test::makeSyntheticJump("squat-jump");
+  const Primitive b = centaur::test::makeSyntheticJump("half-squat-jump", 1.0);
+  // Append to a missing file creates it.
+  planner::writePrimitives(path, {a}, WriteMode::Append);
+  planner::writePrimitives(path, {b}, WriteMode::Append);
+  EXPECT_EQ(planner::listPrimitives(path), (std::vector<std::string>{"squat-jump", "half-squat-jump"}));
+  expectSame(a, planner::readPrimitive(path, "squat-jump"));
+  expectSame(b, planner::readPrimitive(path, "half-squat-jump"));
+
+  // Replace the first group in place: same position, new content, the other group untouched.
+  Primitive a2 = centaur::test::makeSyntheticJump("squat-jump", 2.0);
+  a2.solve.status = "not_converged";
+  a2.scalars["target_height"] = 0.3;
+  planner::writePrimitives(path, {a2}, WriteMode::Append);
+  EXPECT_EQ(planner::listPrimitives(path), (std::vector<std::string>{"squat-jump", "half-squat-jump"}));
+  expectSame(a2, planner::readPrimitive(path, "squat-jump"));
+  expectSame(b, planner::readPrimitive(path, "half-squat-jump"));
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"db.h5"});
+
+  // Replace mode drops everything else.
+  planner::writePrimitives(path, {b}, WriteMode::Replace);
+  EXPECT_EQ(planner::listPrimitives(path), std::vector<std::string>{"half-squat-jump"});
+}
+
+TEST(PrimitiveIo, UnwritableLocationThrowsAndLeavesNothing) {
+  TempDir dir;
+  const std::string blocker = dir.file("not-a-directory");
+  std::ofstream(blocker) << "a regular file";
+  const Primitive p = centaur::test::makeSyntheticJump("squat-jump");
+  EXPECT_THROW(planner::writePrimitive(blocker + "/sub/out.h5", p), RuntimeError);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"not-a-directory"});
+
+  if (::geteuid() != 0) {  // permissions do not stop root
+    const std::string locked = dir.file("locked");
+    fs::create_directory(locked);
+    fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
+    EXPECT_THROW(planner::writePrimitive(locked + "/out.h5", p), RuntimeError);
+    fs::permissions(locked, fs::perms::owner_all);
+    EXPECT_TRUE(fs::is_empty(locked));
+  }
+}
+
+TEST(PrimitiveIo, FailureHalfwayRemovesTheTemporaryAndKeepsTheOldFile) {
+  TempDir dir;
+  const std::string path = dir.file("db.h5");
+  const Primitive good = centaur::test::makeSyntheticJump("good");
+  Primitive bad = centaur::test::makeSyntheticJump("bad");
+  bad.force.conservativeResize(Eigen::NoChange, 11);  // detected while writing the second group
+
+  // New file: nothing at all is left.
+  try {
+    planner::writePrimitives(path, {good, bad});
+    ADD_FAILURE() << "no exception";
+  } catch (const RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("force"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(dir.entries().empty());
+
+  // Existing file: untouched, byte for byte, in both modes.
+  planner::writePrimitives(path, {good});
+  const std::string before = readBytes(path);
+  EXPECT_THROW(planner::writePrimitives(path, {bad}, WriteMode::Append), RuntimeError);
+  EXPECT_THROW(planner::writePrimitives(path, {good, bad}, WriteMode::Replace), RuntimeError);
+  Primitive odd_contact = good;
+  odd_contact.contact(5, 2) = 0.5;
+  EXPECT_THROW(planner::writePrimitives(path, {odd_contact}), RuntimeError);
+  Primitive reserved = good;
+  reserved.scalars["solve_time_s"] = 1.0;
+  EXPECT_THROW(planner::writePrimitives(path, {reserved}), RuntimeError);
+  EXPECT_THROW(planner::writePrimitives(path, {good, good}), RuntimeError);  // duplicate name
+  Primitive unnamed = good;
+  unnamed.name = "a/b";
+  EXPECT_THROW(planner::writePrimitives(path, {unnamed}), RuntimeError);
+  EXPECT_EQ(readBytes(path), before);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"db.h5"});
+}
+
+TEST(PrimitiveIo, FailedRenameRemovesTheTemporary) {
+  TempDir dir;
+  const std::string target = dir.file("occupied");
+  fs::create_directory(target);
+  std::ofstream(target + "/keep") << "x";  // a non-empty directory cannot be renamed over
+  EXPECT_THROW(planner::writePrimitive(target, centaur::test::makeSyntheticJump("j")), RuntimeError);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"occupied"});
+}
+
+TEST(PrimitiveIo, MissingOrForeignFilesGiveInputErrorsNamingThem) {
+  TempDir dir;
+  const std::string missing = dir.file("missing.h5");
+  std::string msg = inputErrorOf([&] { planner::readPrimitives(missing); });
+  EXPECT_NE(msg.find(missing), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no such file"), std::string::npos) << msg;
+  msg = inputErrorOf([&] { planner::listPrimitives(missing); });
+  EXPECT_NE(msg.find(missing), std::string::npos) << msg;
+
+  const std::string text = dir.file("notes.h5");
+  std::ofstream(text) << "this is not HDF5\n";
+  msg = inputErrorOf([&] { planner::readPrimitives(text); });
+  EXPECT_NE(msg.find(text), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not an HDF5 file"), std::string::npos) << msg;
+
+  // Append onto a foreign file refuses to clobber it.
+  EXPECT_THROW(planner::writePrimitive(text, centaur::test::makeSyntheticJump("j"), WriteMode::Append), InputError);
+  EXPECT_EQ(readBytes(text), "this is not HDF5\n");
+
+  // A truncated (corrupt) primitive file.
+  const std::string good = dir.file("good.h5");
+  planner::writePrimitive(good, centaur::test::makeSyntheticJump("squat-jump"));
+  const std::string bytes = readBytes(good);
+  const std::string cut = dir.file("cut.h5");
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  msg = inputErrorOf([&] { planner::readPrimitives(cut); });
+  EXPECT_NE(msg.find(cut), std::string::npos) << msg;
+}
+
+TEST(PrimitiveIo, MissingOrMisshapenDatasetGivesInputErrorNamingIt) {
+  TempDir dir;
+  const std::string path = dir.file("db.h5");
+  planner::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+
+  deleteLink(path, "squat-jump/foot_pos");
+  std::string msg = inputErrorOf([&] { planner::readPrimitives(path); });
+  EXPECT_NE(msg.find(path), std::string::npos) << msg;
+  EXPECT_NE(msg.find("squat-jump/foot_pos"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("missing dataset"), std::string::npos) << msg;
+
+  planner::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+  deleteLink(path, "squat-jump/knots/dt");
+  msg = inputErrorOf([&] { planner::readPrimitive(path, "squat-jump"); });
+  EXPECT_NE(msg.find("squat-jump/knots/dt"), std::string::npos) << msg;
+
+  planner::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+  replaceDataset(path, "squat-jump/tau", {1001, 11});
+  msg = inputErrorOf([&] { planner::readPrimitives(path); });
+  EXPECT_NE(msg.find("squat-jump/tau"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(1001, 11)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("expected (1001, 12)"), std::string::npos) << msg;
+
+  planner::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+  replaceDataset(path, "squat-jump/base_vel", {1000, 3});  // one row short of t
+  msg = inputErrorOf([&] { planner::readPrimitives(path); });
+  EXPECT_NE(msg.find("squat-jump/base_vel"), std::string::npos) << msg;
+
+  msg = inputErrorOf([&] { planner::readPrimitive(path, "backflip"); });
+  EXPECT_NE(msg.find("backflip"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("squat-jump"), std::string::npos) << msg;  // lists what is there
+}
