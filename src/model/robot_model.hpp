@@ -65,6 +65,34 @@ class RobotModel {
   void biasForces(Eigen::Ref<Eigen::VectorXd> b) const;       ///< nv: C v + g
   void gravityForces(Eigen::Ref<Eigen::VectorXd> g) const;    ///< nv: g(q)
 
+  // ---- additions (same conventions; computed on the last update(), no allocation) ----
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  /// Number of frames (bodies, then sites); frame ids are 0 .. numFrames()-1.
+  int numFrames() const;
+  const std::string& frameName(int frame) const;
+  /// Frame velocity J v: [linear velocity of the frame origin (W); angular velocity (W)].
+  Vector6d frameVelocity(int frame) const;
+  /// Frame bias acceleration Jdot v (the frame's acceleration when vdot = 0): [classical linear
+  /// acceleration of the origin (W); angular (W)]. Exact (from MuJoCo's cdof_dot), no gravity.
+  Vector6d frameBiasAcceleration(int frame) const;
+  /// Jdot v of a point given in frame coordinates (3, W), e.g. a wheel contact point.
+  Eigen::Vector3d pointBiasAcceleration(int frame, const Eigen::Vector3d& f_point) const;
+  /// Jacobian (3 x nv) of the material point of the frame's body that is at WORLD position w_point now,
+  /// e.g. the wheel's point in contact with the ground (rolling: its velocity is zero).
+  void worldPointJacobian(int frame, const Eigen::Vector3d& w_point, Eigen::Ref<RowMatrixXd> J) const;
+  /// Jdot v of that material point (3, W).
+  Eigen::Vector3d worldPointBiasAcceleration(int frame, const Eigen::Vector3d& w_point) const;
+  Eigen::Vector3d comVelocity() const;          ///< J_com v (W)
+  Eigen::Vector3d comBiasAcceleration() const;  ///< Jdot_com v (W)
+  /// Centroidal momentum h = A v: [linear (W); angular about the CoM (W)].
+  Vector6d centroidalMomentum() const;
+  /// Centroidal momentum bias Adot v (so that hdot = A vdot + Adot v), same layout as h.
+  Vector6d centroidalMomentumBias() const;
+  Eigen::Vector3d gravity() const;  ///< [m/s^2] the model's gravity vector (W)
+  /// The configuration used by the last update() (nq) and velocity (nv).
+  const Eigen::VectorXd& q() const;
+  const Eigen::VectorXd& v() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
