@@ -1,0 +1,163 @@
+#include "controller/standing_controller.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace centaur {
+
+const char* StandingParams::defaultsYaml() {
+  return R"(controller:
+  feedforward: true         # gravity-compensating torque feed-forward (static wheel forces)
+  tangential_weight: 100.0  # [-] cost of tangential vs normal wheel forces in the split, [1, 1e6]
+  friction: 0.6             # [-] friction coefficient of the cone projection, [0.05, 5]
+  wheel_radius: 0.078       # [m] wheel radius (contact point below the wheel centre), [0.01, 0.5]
+  gains:                    # joint impedance per group: kp [Nm/rad] in [0, 1e5], kd [Nm s/rad] in [0, 1e3]
+    leg: {kp: 1000.0, kd: 10.0}        # hip_yaw, hip_pitch, knee_pitch
+    ankle_pitch: {kp: 500.0, kd: 5.0}
+    ankle_yaw: {kp: 100.0, kd: 1.0}
+    wheel: {kp: 100.0, kd: 2.0}        # j_wheel_* (held at the initial angle)
+    torso: {kp: 500.0, kd: 5.0}
+    arm: {kp: 300.0, kd: 3.0}          # j_arm*_1 .. j_arm*_4
+    wrist: {kp: 50.0, kd: 0.5}         # j_arm*_5 .. j_arm*_7
+    other: {kp: 100.0, kd: 1.0}        # any other joint
+)";
+}
+
+void StandingParams::read(YamlReader& r) {
+  r.get("feedforward", feedforward);
+  r.get("tangential_weight", tangential_weight, 1.0, 1e6);
+  r.get("friction", friction, 0.05, 5.0);
+  r.get("wheel_radius", wheel_radius, 0.01, 0.5);
+  auto g = r.child("gains");
+  for (auto& [name, gains] : std::vector<std::pair<const char*, JointGains*>>{
+           {"leg", &leg}, {"ankle_pitch", &ankle_pitch}, {"ankle_yaw", &ankle_yaw}, {"wheel", &wheel},
+           {"torso", &torso}, {"arm", &arm}, {"wrist", &wrist}, {"other", &other}}) {
+    auto c = g.child(name);
+    c.get("kp", gains->kp, 0.0, 1e5);
+    c.get("kd", gains->kd, 0.0, 1e3);
+    c.finish();
+  }
+  g.finish();
+}
+
+namespace {
+bool contains(const std::string& s, const char* part) { return s.find(part) != std::string::npos; }
+
+JointGains gainsFor(const std::string& name, const StandingParams& p) {
+  if (contains(name, "hip_yaw") || contains(name, "hip_pitch") || contains(name, "knee_pitch")) return p.leg;
+  if (contains(name, "ankle_pitch")) return p.ankle_pitch;
+  if (contains(name, "ankle_yaw")) return p.ankle_yaw;
+  if (contains(name, "wheel")) return p.wheel;
+  if (contains(name, "torso")) return p.torso;
+  if (name.rfind("j_arm", 0) == 0 && !name.empty()) {
+    const char last = name.back();
+    return (last >= '5' && last <= '7') ? p.wrist : p.arm;
+  }
+  return p.other;
+}
+}  // namespace
+
+StandingController::StandingController(const std::string& mjcf_path, const StandingParams& params)
+    : params_(params), model_(std::make_unique<RobotModel>(mjcf_path)) {
+  n_ = model_->numJoints();
+  if (params_.wheel_frames.size() != 4) throw InputError(mjcf_path + ": the standing controller needs 4 wheel frames");
+  for (int k = 0; k < 4; ++k) {
+    wheel_ids_[k] = model_->frameId(params_.wheel_frames[k]);
+    if (wheel_ids_[k] < 0) throw InputError(mjcf_path + ": frame '" + params_.wheel_frames[k] + "' not found");
+  }
+  const int imu = model_->frameId(params_.imu_frame);
+  const int base = model_->frameId(params_.base_frame);
+  if (imu < 0 || base < 0) {
+    throw InputError(mjcf_path + ": frames '" + params_.imu_frame + "' and '" + params_.base_frame + "' are required");
+  }
+  q_model_.setZero(model_->nq());
+  v_model_.setZero(model_->nv());
+  g_.setZero(model_->nv());
+  for (auto& J : J_) J.setZero(3, model_->nv());
+  // imu_R_base from the model at the home posture (the IMU is rigidly attached to the pelvis).
+  q_home_ = model_->homeJoints();
+  q_model_[3] = 1.0;
+  q_model_.tail(n_) = q_home_;
+  model_->update(q_model_, v_model_);
+  const Eigen::Quaterniond w_q_base(model_->framePose(base).rotation());
+  const Eigen::Quaterniond w_q_imu(model_->framePose(imu).rotation());
+  imu_q_base_ = (w_q_imu.conjugate() * w_q_base).normalized();
+  kp_.setZero(n_);
+  kd_.setZero(n_);
+  const auto& names = model_->jointNames();
+  for (int i = 0; i < n_; ++i) {
+    const JointGains g = gainsFor(names[static_cast<std::size_t>(i)], params_);
+    kp_[i] = g.kp;
+    kd_[i] = g.kd;
+  }
+  for (int k = 0; k < 4; ++k) {
+    w_inv_.segment<3>(3 * k) << 1.0 / params_.tangential_weight, 1.0 / params_.tangential_weight, 1.0;
+  }
+}
+
+StandingController::~StandingController() = default;
+
+void StandingController::start(const RobotState& state, JointCommand& command) {
+  if (state.q.size() != n_) {
+    throw InputError("standing controller: the robot has " + std::to_string(state.q.size()) +
+                     " joints, the model " + std::to_string(n_));
+  }
+  command.resize(n_);
+  // Wheels (continuous) hold their initial angle; everything else goes to home.
+  const auto& names = model_->jointNames();
+  for (int i = 0; i < n_; ++i) {
+    if (contains(names[static_cast<std::size_t>(i)], "wheel")) q_home_[i] = state.q[i];
+  }
+  tick(state, command);
+}
+
+void StandingController::computeFeedforward(const RobotState& state, JointCommand& command) noexcept {
+  // Base orientation from the IMU; position zero (gravity and the base rows of the contact Jacobians
+  // depend only on relative positions); static: v = 0.
+  const Eigen::Quaterniond w_q_base = (state.imu_quat * imu_q_base_).normalized();
+  q_model_.head<3>().setZero();
+  q_model_[3] = w_q_base.w();
+  q_model_[4] = w_q_base.x();
+  q_model_[5] = w_q_base.y();
+  q_model_[6] = w_q_base.z();
+  q_model_.tail(n_) = state.q;
+  model_->update(q_model_, v_model_);
+  model_->gravityForces(g_);
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Isometry3d w_T_wheel = model_->framePose(wheel_ids_[k]);
+    const Eigen::Vector3d w_contact = w_T_wheel.translation() - params_.wheel_radius * Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d f_contact = w_T_wheel.inverse() * w_contact;
+    model_->pointJacobian(wheel_ids_[k], f_contact, J_[k]);
+    A_.block<6, 3>(0, 3 * k) = J_[k].leftCols<6>().transpose();
+  }
+  // Weighted least norm: F = W^-1 A^T (A W^-1 A^T)^-1 g_b.
+  AWA_.noalias() = A_ * w_inv_.asDiagonal() * A_.transpose();
+  ldlt_.compute(AWA_);
+  const Eigen::Matrix<double, 6, 1> lambda = ldlt_.solve(g_.head<6>());
+  F_.noalias() = w_inv_.asDiagonal() * (A_.transpose() * lambda);
+  command.tau_ff = g_.tail(n_);
+  for (int k = 0; k < 4; ++k) {
+    Eigen::Vector3d f = F_.segment<3>(3 * k);
+    f.z() = std::max(f.z(), 0.0);
+    const double ft = f.head<2>().norm();
+    const double ft_max = params_.friction * f.z();
+    if (ft > ft_max && ft > 0.0) f.head<2>() *= ft_max / ft;
+    forces_.col(k) = f;
+    command.tau_ff.noalias() -= J_[k].rightCols(n_).transpose() * f;
+  }
+}
+
+void StandingController::tick(const RobotState& state, JointCommand& command) noexcept {
+  command.q_ref = q_home_;
+  command.qd_ref.setZero();
+  command.kp = kp_;
+  command.kd = kd_;
+  if (params_.feedforward) {
+    computeFeedforward(state, command);
+  } else {
+    command.tau_ff.setZero();
+  }
+}
+
+}  // namespace centaur

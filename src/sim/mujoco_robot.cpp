@@ -1,0 +1,285 @@
+#include "sim/mujoco_robot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/error.hpp"
+
+namespace centaur::sim {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}
+
+MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng_(settings.seed) {
+  const std::string& path = settings_.model_path;
+  char error[1000] = "";
+  m_ = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
+  if (!m_) throw InputError(path + ": cannot load the MJCF model: " + error);
+  if (m_->opt.integrator == mjINT_RK4) {
+    mj_deleteModel(m_);
+    throw InputError(path + ": the RK4 integrator is not supported (the impedance law needs mj_step1/mj_step2)");
+  }
+  if (!(settings_.timestep > 0.0) || settings_.control_decimation < 1 || settings_.latency_periods < 0) {
+    mj_deleteModel(m_);
+    throw InputError(path + ": invalid simulation timing (timestep > 0, control_decimation >= 1, latency >= 0)");
+  }
+  m_->opt.timestep = settings_.timestep;
+  d_ = mj_makeData(m_);
+
+  // Actuated joints, in actuator order.
+  n_ = m_->nu;
+  gear_.resize(n_);
+  tau_max_.resize(n_);
+  q_lo_.resize(n_);
+  q_hi_.resize(n_);
+  for (int i = 0; i < m_->nu; ++i) {
+    const int j = m_->actuator_trnid[2 * i];
+    if (m_->actuator_trntype[i] != mjTRN_JOINT || j < 0 ||
+        (m_->jnt_type[j] != mjJNT_HINGE && m_->jnt_type[j] != mjJNT_SLIDE) || m_->actuator_dyntype[i] != mjDYN_NONE ||
+        m_->actuator_gaintype[i] != mjGAIN_FIXED || m_->actuator_biastype[i] != mjBIAS_NONE) {
+      const char* name = mj_id2name(m_, mjOBJ_ACTUATOR, i);
+      mj_deleteData(d_);
+      mj_deleteModel(m_);
+      throw InputError(path + ": actuator '" + (name ? name : std::to_string(i)) +
+                       "' must be a torque motor on a hinge or slide joint");
+    }
+    const char* jname = mj_id2name(m_, mjOBJ_JOINT, j);
+    joint_names_.emplace_back(jname ? jname : "joint" + std::to_string(j));
+    qpos_adr_.push_back(m_->jnt_qposadr[j]);
+    dof_adr_.push_back(m_->jnt_dofadr[j]);
+    const double gear = m_->actuator_gear[6 * i] * m_->actuator_gainprm[mjNGAIN * i];
+    gear_[i] = gear;
+    tau_max_[i] = m_->actuator_ctrllimited[i]
+                      ? std::min(std::abs(m_->actuator_ctrlrange[2 * i]), std::abs(m_->actuator_ctrlrange[2 * i + 1])) *
+                            std::abs(gear)
+                      : kInf;
+    q_lo_[i] = m_->jnt_limited[j] ? m_->jnt_range[2 * j] : -kInf;
+    q_hi_[i] = m_->jnt_limited[j] ? m_->jnt_range[2 * j + 1] : kInf;
+  }
+  for (int j = 0; j < m_->njnt; ++j) {
+    if (m_->jnt_type[j] == mjJNT_FREE) {
+      base_qpos_ = m_->jnt_qposadr[j];
+      base_dof_ = m_->jnt_dofadr[j];
+      break;
+    }
+  }
+  sensor_quat_ = mj_name2id(m_, mjOBJ_SENSOR, "imu_quat");
+  sensor_gyro_ = mj_name2id(m_, mjOBJ_SENSOR, "imu_gyro");
+  sensor_acc_ = mj_name2id(m_, mjOBJ_SENSOR, "imu_acc");
+  key_ = settings_.keyframe.empty() ? -1 : mj_name2id(m_, mjOBJ_KEY, settings_.keyframe.c_str());
+
+  // Contact bodies (ground truth forces) and their friction.
+  for (const auto& b : settings_.contact_bodies) {
+    const int id = mj_name2id(m_, mjOBJ_BODY, b.c_str());
+    if (id < 0) {
+      mj_deleteData(d_);
+      mj_deleteModel(m_);
+      throw InputError(path + ": contact body '" + b + "' not found in the model");
+    }
+    contact_body_ids_.push_back(id);
+  }
+  // Friction: MuJoCo uses the maximum of the two geoms' coefficients, so set both sides.
+  const int ground = mj_name2id(m_, mjOBJ_GEOM, "ground");
+  if (ground >= 0) m_->geom_friction[3 * ground] = settings_.friction;
+  for (int g = 0; g < m_->ngeom; ++g) {
+    if (std::find(contact_body_ids_.begin(), contact_body_ids_.end(), m_->geom_bodyid[g]) != contact_body_ids_.end()) {
+      m_->geom_friction[3 * g] = settings_.friction;
+    }
+  }
+  // Wall: body `wall` whose front face (normal +x, towards the robot) is at body_pos.x (CENTAURO's MJCF
+  // convention), or else a world box geom `wall` whose +x face is placed at wall_x.
+  const int wall_body = mj_name2id(m_, mjOBJ_BODY, "wall");
+  const int wall_geom = mj_name2id(m_, mjOBJ_GEOM, "wall");
+  if (wall_body > 0) {
+    m_->body_pos[3 * wall_body] = settings_.wall_x;
+  } else if (wall_geom >= 0 && m_->geom_bodyid[wall_geom] == 0) {
+    m_->geom_pos[3 * wall_geom] = settings_.wall_x - m_->geom_size[3 * wall_geom];
+  }
+
+  command_.resize(n_);
+  tau_applied_.setZero(n_);
+  tau_cmd_.setZero(n_);
+  delay_.resize(static_cast<std::size_t>(settings_.latency_periods) + 1);
+  for (auto& s : delay_) s.resize(n_);
+  reset();
+}
+
+MujocoRobot::~MujocoRobot() {
+  if (d_) mj_deleteData(d_);
+  if (m_) mj_deleteModel(m_);
+}
+
+void MujocoRobot::reset() {
+  if (key_ >= 0) {
+    mj_resetDataKeyframe(m_, d_, key_);
+  } else {
+    mj_resetData(m_, d_);
+  }
+  command_.resize(n_);
+  tau_applied_.setZero();
+  tau_cmd_.setZero();
+  rng_.seed(settings_.seed);
+  normal_.reset();
+  mj_forward(m_, d_);
+  head_ = 0;
+  sampleMeasurement();
+  const RobotState& first = delay_[head_];
+  for (auto& s : delay_) {
+    if (&s == &first) continue;
+    s.t = first.t;
+    s.q = first.q;
+    s.qd = first.qd;
+    s.tau = first.tau;
+    s.imu_quat = first.imu_quat;
+    s.imu_omega = first.imu_omega;
+    s.imu_acc = first.imu_acc;
+  }
+}
+
+void MujocoRobot::read(RobotState& state) const {
+  const RobotState& s = delay_[(head_ + 1) % delay_.size()];  // the oldest entry: latency_periods old
+  state.t = s.t;
+  state.q = s.q;
+  state.qd = s.qd;
+  state.tau = s.tau;
+  state.imu_quat = s.imu_quat;
+  state.imu_omega = s.imu_omega;
+  state.imu_acc = s.imu_acc;
+}
+
+void MujocoRobot::write(const JointCommand& c) {
+  command_.q_ref = c.q_ref;
+  command_.qd_ref = c.qd_ref;
+  command_.tau_ff = c.tau_ff;
+  command_.kp = c.kp;
+  command_.kd = c.kd;
+}
+
+void MujocoRobot::sampleMeasurement() {
+  head_ = (head_ + 1) % delay_.size();
+  RobotState& s = delay_[head_];
+  s.t = d_->time;
+  const SensorNoise& nz = settings_.noise;
+  for (Eigen::Index i = 0; i < n_; ++i) {
+    s.q[i] = d_->qpos[qpos_adr_[i]];
+    s.qd[i] = d_->qvel[dof_adr_[i]];
+    s.tau[i] = tau_applied_[i];
+    if (nz.q > 0.0) s.q[i] += nz.q * normal_(rng_);
+    if (nz.qd > 0.0) s.qd[i] += nz.qd * normal_(rng_);
+    if (nz.tau > 0.0) s.tau[i] += nz.tau * normal_(rng_);
+  }
+  if (sensor_quat_ >= 0) {
+    const mjtNum* w = d_->sensordata + m_->sensor_adr[sensor_quat_];  // MuJoCo order w, x, y, z
+    s.imu_quat = Eigen::Quaterniond(w[0], w[1], w[2], w[3]).normalized();
+  } else if (base_qpos_ >= 0) {
+    const mjtNum* w = d_->qpos + base_qpos_ + 3;
+    s.imu_quat = Eigen::Quaterniond(w[0], w[1], w[2], w[3]).normalized();
+  }
+  if (nz.orientation > 0.0) {
+    const Eigen::Vector3d rv(normal_(rng_), normal_(rng_), normal_(rng_));
+    const Eigen::Vector3d e = nz.orientation * rv;
+    const double angle = e.norm();
+    if (angle > 0.0) s.imu_quat = (s.imu_quat * Eigen::Quaterniond(Eigen::AngleAxisd(angle, e / angle))).normalized();
+  }
+  if (sensor_gyro_ >= 0) {
+    const mjtNum* w = d_->sensordata + m_->sensor_adr[sensor_gyro_];
+    s.imu_omega = Eigen::Vector3d(w[0], w[1], w[2]);
+  }
+  if (sensor_acc_ >= 0) {
+    const mjtNum* w = d_->sensordata + m_->sensor_adr[sensor_acc_];
+    s.imu_acc = Eigen::Vector3d(w[0], w[1], w[2]);
+  }
+  if (nz.gyro > 0.0) {
+    for (int k = 0; k < 3; ++k) s.imu_omega[k] += nz.gyro * normal_(rng_);
+  }
+  if (nz.acc > 0.0) {
+    for (int k = 0; k < 3; ++k) s.imu_acc[k] += nz.acc * normal_(rng_);
+  }
+}
+
+void MujocoRobot::applyImpedance() {
+  for (Eigen::Index i = 0; i < n_; ++i) {
+    const double q = d_->qpos[qpos_adr_[i]];
+    const double qd = d_->qvel[dof_adr_[i]];
+    const double tau = command_.tau_ff[i] + command_.kp[i] * (command_.q_ref[i] - q) +
+                       command_.kd[i] * (command_.qd_ref[i] - qd);
+    tau_cmd_[i] = tau;
+    const double sat = std::clamp(tau, -tau_max_[i], tau_max_[i]);
+    tau_applied_[i] = sat;
+    d_->ctrl[i] = sat / gear_[i];
+  }
+}
+
+void MujocoRobot::physicsStep() {
+  mj_step1(m_, d_);
+  applyImpedance();
+  mj_step2(m_, d_);
+}
+
+void MujocoRobot::controlPeriod(Controller& controller, RobotState& state, JointCommand& command) {
+  mj_step1(m_, d_);  // positions/velocities and their sensors at this instant
+  sampleMeasurement();
+  read(state);
+  controller.tick(state, command);
+  write(command);
+  applyImpedance();
+  mj_step2(m_, d_);
+  for (int k = 1; k < settings_.control_decimation; ++k) physicsStep();
+}
+
+double MujocoRobot::time() const { return d_->time; }
+
+Eigen::Vector3d MujocoRobot::basePosition() const {
+  if (base_qpos_ < 0) return Eigen::Vector3d::Zero();
+  const mjtNum* p = d_->qpos + base_qpos_;
+  return Eigen::Vector3d(p[0], p[1], p[2]);
+}
+
+Eigen::Quaterniond MujocoRobot::baseOrientation() const {
+  if (base_qpos_ < 0) return Eigen::Quaterniond::Identity();
+  const mjtNum* p = d_->qpos + base_qpos_ + 3;  // w, x, y, z
+  return Eigen::Quaterniond(p[0], p[1], p[2], p[3]).normalized();
+}
+
+Eigen::Matrix<double, 6, 1> MujocoRobot::baseVelocity() const {
+  Eigen::Matrix<double, 6, 1> v = Eigen::Matrix<double, 6, 1>::Zero();
+  if (base_dof_ < 0) return v;
+  for (int k = 0; k < 6; ++k) v[k] = d_->qvel[base_dof_ + k];
+  return v;
+}
+
+void MujocoRobot::jointPositions(Eigen::Ref<Eigen::VectorXd> q) const {
+  for (Eigen::Index i = 0; i < n_; ++i) q[i] = d_->qpos[qpos_adr_[i]];
+}
+
+void MujocoRobot::jointVelocities(Eigen::Ref<Eigen::VectorXd> qd) const {
+  for (Eigen::Index i = 0; i < n_; ++i) qd[i] = d_->qvel[dof_adr_[i]];
+}
+
+void MujocoRobot::contactForces(Eigen::Ref<Eigen::Matrix3Xd> w_f) const {
+  w_f.setZero();
+  const int nb = static_cast<int>(contact_body_ids_.size());
+  for (int c = 0; c < d_->ncon; ++c) {
+    const mjContact& con = d_->contact[c];
+    if (con.efc_address < 0) continue;
+    const int b1 = m_->geom_bodyid[con.geom1];
+    const int b2 = m_->geom_bodyid[con.geom2];
+    int k1 = -1, k2 = -1;
+    for (int k = 0; k < nb; ++k) {
+      if (contact_body_ids_[k] == b1) k1 = k;
+      if (contact_body_ids_[k] == b2) k2 = k;
+    }
+    if (k1 < 0 && k2 < 0) continue;
+    mjtNum f[6];
+    mj_contactForce(m_, d_, c, f);  // in the contact frame: normal (from geom1 to geom2), then tangents
+    // World force exerted by geom1 on geom2: frame rows are the contact axes.
+    Eigen::Vector3d w;
+    for (int r = 0; r < 3; ++r) w[r] = con.frame[r] * f[0] + con.frame[3 + r] * f[1] + con.frame[6 + r] * f[2];
+    if (k2 >= 0) w_f.col(k2) += w;
+    if (k1 >= 0) w_f.col(k1) -= w;
+  }
+}
+
+}  // namespace centaur::sim

@@ -1,0 +1,17 @@
+#include "sim/scenario.hpp"
+
+namespace centaur::sim {
+
+std::vector<Scenario>& scenarios() {
+  static std::vector<Scenario> registry{standScenario()};
+  return registry;
+}
+
+const Scenario* findScenario(const std::string& name) {
+  for (const auto& s : scenarios()) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace centaur::sim

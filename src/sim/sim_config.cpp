@@ -1,0 +1,120 @@
+#include "sim/sim_config.hpp"
+
+namespace centaur::sim {
+
+const char* const kSimConfigDefaults = R"(# centaur simulate: scenario configuration (defaults). Units SI; [lo, hi] = allowed range.
+duration: 10.0            # [s] simulated time, [0.001, 3600]
+model: ""                 # MJCF file; "" = <source>/models/centauro/centauro.xml
+physics:
+  timestep: 0.0005        # [s] physics step (2 kHz), [1e-5, 0.01]
+  control_decimation: 2   # physics steps per controller call (2 -> 1 kHz), [1, 100]
+world:
+  wall_x: -0.578          # [m] x of the wall's front face (normal +x, behind the robot), [-100, 100]
+  friction: 1.0           # [-] wheel-ground sliding friction (set on ground and wheels), [0, 10]
+sensors:
+  latency_periods: 0      # [control periods] measurement delay, [0, 100]
+  seed: 1                 # noise random seed, [0, 2147483647]
+  noise:                  # Gaussian noise standard deviations; 0 = off
+    q: 0.0                # [rad] joint positions, [0, 1]
+    qd: 0.0               # [rad/s] joint velocities, [0, 10]
+    tau: 0.0              # [Nm] measured joint torques, [0, 100]
+    gyro: 0.0             # [rad/s] IMU angular velocity, [0, 10]
+    acc: 0.0              # [m/s^2] IMU specific force, [0, 100]
+    orientation: 0.0      # [rad] IMU orientation, [0, 1]
+outcome:
+  fall_height: 0.35       # [m] pelvis height below which the run is a fall, [0, 5]
+  fall_tilt_deg: 45.0     # [deg] |roll| or |pitch| above which the run is a fall, [1, 180]
+render:
+  width: 640              # [px] video/snapshot width, [16, 4096]
+  height: 480             # [px] video/snapshot height, [16, 4096]
+  fps: 30.0               # [1/s] video frame rate, [1, 240]
+  camera: side            # MJCF camera name; "" = free camera tracking the pelvis
+log:
+  decimation: 1           # log every N-th control period, [1, 1000]
+controller: {}            # the scenario controller's own section (see docs/sim.md)
+)";
+
+std::string defaultModelPath() { return std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml"; }
+
+SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label) {
+  SimConfig c;
+  c.effective = effective;
+  c.label = label;
+  YamlReader r(effective, label);
+  r.get("duration", c.duration, 0.001, 3600.0);
+  std::string model;
+  r.get("model", model);
+  c.robot.model_path = model.empty() ? defaultModelPath() : model;
+  {
+    auto p = r.child("physics");
+    p.get("timestep", c.robot.timestep, 1e-5, 0.01);
+    p.get("control_decimation", c.robot.control_decimation, 1, 100);
+    p.finish();
+  }
+  {
+    auto w = r.child("world");
+    w.get("wall_x", c.robot.wall_x, -100.0, 100.0);
+    w.get("friction", c.robot.friction, 0.0, 10.0);
+    w.finish();
+  }
+  {
+    auto s = r.child("sensors");
+    s.get("latency_periods", c.robot.latency_periods, 0, 100);
+    int seed = 1;
+    s.get("seed", seed, 0, 2147483647);
+    c.robot.seed = static_cast<std::uint64_t>(seed);
+    auto n = s.child("noise");
+    n.get("q", c.robot.noise.q, 0.0, 1.0);
+    n.get("qd", c.robot.noise.qd, 0.0, 10.0);
+    n.get("tau", c.robot.noise.tau, 0.0, 100.0);
+    n.get("gyro", c.robot.noise.gyro, 0.0, 10.0);
+    n.get("acc", c.robot.noise.acc, 0.0, 100.0);
+    n.get("orientation", c.robot.noise.orientation, 0.0, 1.0);
+    n.finish();
+    s.finish();
+  }
+  {
+    auto o = r.child("outcome");
+    o.get("fall_height", c.outcome.fall_height, 0.0, 5.0);
+    o.get("fall_tilt_deg", c.outcome.fall_tilt_deg, 1.0, 180.0);
+    o.finish();
+  }
+  {
+    auto v = r.child("render");
+    v.get("width", c.render.width, 16, 4096);
+    v.get("height", c.render.height, 16, 4096);
+    v.get("fps", c.render.fps, 1.0, 240.0);
+    v.get("camera", c.render.camera);
+    v.finish();
+  }
+  {
+    auto l = r.child("log");
+    l.get("decimation", c.log_decimation, 1, 1000);
+    l.finish();
+  }
+  r.raw("controller");  // read by the scenario's controller (controllerSection)
+  r.finish();
+  return c;
+}
+
+SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string& file,
+                        const std::vector<std::string>& overrides) {
+  YAML::Node node = loadYamlString(kSimConfigDefaults, "<simulation defaults>");
+  if (!scenario_defaults.empty()) node = mergeYaml(node, loadYamlString(scenario_defaults, "<scenario defaults>"));
+  std::string label = "<defaults>";
+  if (!file.empty()) {
+    node = mergeYaml(node, loadYamlFile(file));
+    label = file;
+  }
+  for (const auto& o : overrides) applyOverride(node, o);
+  if (!overrides.empty()) label += (file.empty() ? " with --set" : " (with --set)");
+  return parseSimConfig(node, file.empty() && overrides.empty() ? "<defaults>" : label);
+}
+
+YamlReader controllerSection(const SimConfig& config) {
+  const YAML::Node& root = config.effective;
+  const YAML::Node section = root["controller"];
+  return YamlReader(section, config.label, "controller");
+}
+
+}  // namespace centaur::sim

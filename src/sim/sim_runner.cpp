@@ -1,0 +1,177 @@
+#include "sim/sim_runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "sim/png_writer.hpp"
+#include "sim/renderer.hpp"
+#include "sim/sim_log.hpp"
+#include "sim/video_writer.hpp"
+
+namespace centaur::sim {
+
+namespace {
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+/// Roll and pitch (ZYX convention) of w_R_b.
+void rollPitch(const Eigen::Quaterniond& q, double& roll, double& pitch) {
+  const Eigen::Matrix3d R = q.toRotationMatrix();
+  pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  roll = std::atan2(R(2, 1), R(2, 2));
+}
+}  // namespace
+
+std::string configPathFor(const std::string& output_path) {
+  std::filesystem::path p(output_path);
+  p.replace_extension(".config.yaml");
+  return p.string();
+}
+
+RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimConfig& config,
+                         const RunOutputs& out, const std::string& scenario_name) {
+  RunSummary sum;
+  const double dt = robot.controlPeriodSeconds();
+  const long periods = std::lround(config.duration / dt);
+  if (!out.snapshot_path.empty() && (out.snapshot_time < 0.0 || out.snapshot_time > config.duration + 1e-9)) {
+    throw InputError("--at " + std::to_string(out.snapshot_time) + ": snapshot time must be in [0, duration = " +
+                     std::to_string(config.duration) + "] s");
+  }
+  const std::string config_yaml = toYamlString(config.effective);
+  const Eigen::Index n = robot.numJoints();
+
+  RobotState state;
+  state.resize(n);
+  JointCommand command;
+  command.resize(n);
+  robot.read(state);
+  controller.start(state, command);
+  robot.write(command);
+
+  std::unique_ptr<SimLog> log;
+  if (!out.log_path.empty()) {
+    log = std::make_unique<SimLog>(robot.jointNames(), robot.settings().contact_bodies,
+                                   static_cast<std::size_t>(periods / config.log_decimation + 2));
+  }
+  std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<VideoWriter> video;
+  if (!out.video_path.empty() || !out.snapshot_path.empty()) {
+    renderer = std::make_unique<Renderer>(robot.model(), config.render.width, config.render.height,
+                                          config.render.camera);
+  }
+  if (!out.video_path.empty()) {
+    video = std::make_unique<VideoWriter>(out.video_path, config.render.width, config.render.height, config.render.fps);
+  }
+  bool snapshot_done = out.snapshot_path.empty();
+  double next_frame_t = 0.0;
+
+  const Eigen::Vector3d p0 = robot.basePosition();
+  Eigen::VectorXd q(n);
+  const double fall_tilt = config.outcome.fall_tilt_deg / kRadToDeg;
+  const double fall_extra = 1.0;  // [s] keep simulating after a fall (for the video), then stop
+  double wall = 0.0;
+  long k = 0;
+  for (; k < periods; ++k) {
+    const double t = robot.time();
+    // --- ground-truth bookkeeping at the start of the period ---
+    const Eigen::Vector3d p = robot.basePosition();
+    sum.pelvis_drift_m = std::max(sum.pelvis_drift_m, (p - p0).norm());
+    sum.pelvis_drift_xy_m = std::max(sum.pelvis_drift_xy_m, (p - p0).head<2>().norm());
+    double roll = 0.0, pitch = 0.0;
+    rollPitch(robot.baseOrientation(), roll, pitch);
+    sum.peak_roll_deg = std::max(sum.peak_roll_deg, std::abs(roll) * kRadToDeg);
+    sum.peak_pitch_deg = std::max(sum.peak_pitch_deg, std::abs(pitch) * kRadToDeg);
+    robot.jointPositions(q);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double v = std::max(robot.positionLower()[i] - q[i], q[i] - robot.positionUpper()[i]);
+      sum.max_joint_limit_violation = std::max(sum.max_joint_limit_violation, v);
+      if (std::isfinite(robot.effortLimits()[i]) && robot.effortLimits()[i] > 0.0) {
+        sum.max_torque_ratio = std::max(sum.max_torque_ratio, std::abs(robot.appliedTorque()[i]) / robot.effortLimits()[i]);
+      }
+    }
+    const bool fallen = p.z() < config.outcome.fall_height || std::abs(roll) > fall_tilt || std::abs(pitch) > fall_tilt;
+    if (fallen && sum.fall_time_s < 0.0) {
+      sum.fall_time_s = t;
+      sum.outcome = "fall";
+    }
+    if (sum.fall_time_s >= 0.0 && t > sum.fall_time_s + fall_extra) break;
+    // --- pictures ---
+    if (!snapshot_done && t + 0.5 * dt >= out.snapshot_time) {
+      writePng(out.snapshot_path, renderer->render(robot.data()), renderer->width(), renderer->height());
+      snapshot_done = true;
+    }
+    if (video && t + 0.5 * dt >= next_frame_t) {
+      video->addFrame(renderer->render(robot.data()));
+      next_frame_t += 1.0 / config.render.fps;
+    }
+    // --- one control period: measure, controller, impedance at 2 kHz ---
+    const auto w0 = std::chrono::steady_clock::now();
+    robot.controlPeriod(controller, state, command);
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    if (log && k % config.log_decimation == 0) log->append(robot, state, command);
+  }
+  sum.control_periods = k;
+  sum.physics_steps = k * robot.settings().control_decimation;
+  sum.duration_s = robot.time();
+  sum.final_pelvis_height_m = robot.basePosition().z();
+  sum.wall_time_s = wall;
+  sum.real_time_factor = wall > 0.0 ? sum.duration_s / wall : 0.0;
+  if (!snapshot_done) {  // snapshot at the very end (e.g. --at duration, or the run stopped early)
+    writePng(out.snapshot_path, renderer->render(robot.data()), renderer->width(), renderer->height());
+  }
+  if (video) {
+    sum.video_frames = video->frames();
+    video->close();
+    sum.files.push_back(out.video_path);
+    writeTextFileAtomic(configPathFor(out.video_path), config_yaml);
+  }
+  if (!out.snapshot_path.empty()) {
+    sum.files.push_back(out.snapshot_path);
+    writeTextFileAtomic(configPathFor(out.snapshot_path), config_yaml);
+  }
+  if (log) {
+    log->writeHdf5(out.log_path, config_yaml, scenario_name);
+    sum.files.push_back(out.log_path);
+    writeTextFileAtomic(configPathFor(out.log_path), config_yaml);
+  }
+  return sum;
+}
+
+RunSummary runScenario(const Scenario& scenario, const std::string& config_file,
+                       const std::vector<std::string>& overrides, const std::map<std::string, std::string>& given,
+                       const RunOutputs& outputs) {
+  std::map<std::string, std::string> options;
+  for (const auto& o : scenario.options) {
+    auto it = given.find(o.name);
+    if (it == given.end() || it->second.empty()) {
+      if (o.required) throw InputError("simulate " + scenario.name + ": option --" + o.name + " is required");
+      options[o.name] = o.default_value;
+      continue;
+    }
+    if (!o.allowed.empty()) {
+      bool ok = false;
+      std::string list;
+      for (const auto& a : o.allowed) {
+        ok = ok || a == it->second;
+        list += (list.empty() ? "" : ", ") + a;
+      }
+      if (!ok) throw InputError("--" + o.name + " '" + it->second + "': must be one of " + list);
+    }
+    options[o.name] = it->second;
+  }
+  for (const auto& kv : given) {
+    if (!options.count(kv.first)) throw InputError("simulate " + scenario.name + ": unknown option --" + kv.first);
+  }
+  const SimConfig config = loadSimConfig(scenario.defaults_yaml, config_file, overrides);
+  MujocoRobot robot(config.robot);
+  YamlReader controller_config = controllerSection(config);
+  ScenarioContext ctx{config, controller_config, options, robot};
+  std::unique_ptr<Controller> controller = scenario.make_controller(ctx);
+  controller_config.finish();
+  return runSimulation(robot, *controller, config, outputs, scenario.name);
+}
+
+}  // namespace centaur::sim
