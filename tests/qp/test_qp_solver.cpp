@@ -1,0 +1,373 @@
+// ctest-labels: unit
+// Dense QP solver (Goldfarb-Idnani) against Ipopt as an oracle on random feasible problems with degenerate
+// cases, infeasible problems, warm start, analytic answers and invalid input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "ipopt_oracle.hpp"
+#include "qp/qp_solver.hpp"
+
+using centaur::QpSolver;
+using centaur::QpStatus;
+using centaur::test::DenseQp;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+QpStatus solveQp(QpSolver& s, const DenseQp& qp) {
+  return s.solve(qp.H, qp.g, qp.A_eq, qp.b_eq, qp.C, qp.c_lo, qp.c_up, qp.x_lo, qp.x_up);
+}
+
+// Relative KKT residual of (x, y) for the convention H x + g = A_eq' y_eq + C' y_in + y_box:
+// max of stationarity, primal violation, dual sign violation and complementarity, each scaled by the data.
+double kktResidual(const DenseQp& qp, const QpSolver& s) {
+  const VectorXd& x = s.x();
+  const VectorXd y_eq = s.yEq(), y_in = s.yIneq();
+  VectorXd stat = qp.H * x + qp.g - qp.A_eq.transpose() * y_eq - qp.C.transpose() * y_in;
+  const bool box = qp.x_lo.size() > 0;
+  if (box) stat -= s.yBox();
+  const double scale = 1.0 + (qp.H * x).cwiseAbs().maxCoeff() + qp.g.cwiseAbs().maxCoeff();
+  double res = stat.cwiseAbs().maxCoeff() / scale;
+  if (qp.A_eq.rows() > 0) {
+    res = std::max(res, ((qp.A_eq * x - qp.b_eq).array().abs() / (1.0 + qp.b_eq.array().abs())).maxCoeff());
+  }
+  auto side = [&](double v, double lo, double up, double y) {
+    double r = 0.0;
+    if (std::isfinite(lo)) r = std::max(r, (lo - v) / (1.0 + std::abs(lo)));
+    if (std::isfinite(up)) r = std::max(r, (v - up) / (1.0 + std::abs(up)));
+    if (y > 0.0) r = std::max(r, std::isfinite(lo) ? y * std::abs(v - lo) / (1.0 + std::abs(lo)) : y);
+    if (y < 0.0) r = std::max(r, std::isfinite(up) ? -y * std::abs(v - up) / (1.0 + std::abs(up)) : -y);
+    return r;
+  };
+  const VectorXd cx = qp.C * x;
+  for (int i = 0; i < qp.C.rows(); ++i) res = std::max(res, side(cx[i], qp.c_lo[i], qp.c_up[i], y_in[i]));
+  if (box)
+    for (int j = 0; j < qp.n(); ++j) res = std::max(res, side(x[j], qp.x_lo[j], qp.x_up[j], s.yBox()[j]));
+  return res;
+}
+
+// A random feasible problem: a point x0 satisfies every constraint; rows are made active at x0, redundant,
+// duplicated (also with flipped sign), rank deficient, one-sided or free; H sometimes ill-conditioned.
+DenseQp randomFeasible(std::mt19937& rng, int n_max = 25) {
+  std::uniform_int_distribution<int> dn(1, n_max);
+  std::normal_distribution<double> N(0.0, 1.0);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const int n = dn(rng);
+  DenseQp qp;
+  VectorXd x0(n);
+  for (int j = 0; j < n; ++j) x0[j] = N(rng);
+  // Hessian: full rank, or low rank plus a small diagonal (ill-conditioned).
+  const int k = U(rng) < 0.3 ? std::max(1, n / 2) : n;
+  MatrixXd M(k, n);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < n; ++j) M(i, j) = N(rng);
+  const double delta = U(rng) < 0.3 ? 1e-4 : 0.1 + U(rng);
+  qp.H = M.transpose() * M / k + delta * MatrixXd::Identity(n, n);
+  qp.g.resize(n);
+  for (int j = 0; j < n; ++j) qp.g[j] = 3.0 * N(rng);
+  // Equalities, possibly rank deficient (rows that combine earlier rows, more rows than variables).
+  const int m_eq = std::uniform_int_distribution<int>(0, U(rng) < 0.2 ? n + 2 : std::max(0, n - 1))(rng);
+  qp.A_eq.resize(m_eq, n);
+  for (int i = 0; i < m_eq; ++i) {
+    if (i >= 2 && (U(rng) < 0.25 || i >= n)) {
+      qp.A_eq.row(i) = N(rng) * qp.A_eq.row(i - 1) + N(rng) * qp.A_eq.row(i - 2);
+    } else {
+      for (int j = 0; j < n; ++j) qp.A_eq(i, j) = N(rng);
+    }
+  }
+  qp.b_eq = qp.A_eq * x0;
+  // Two-sided inequality rows.
+  const int m_in = std::uniform_int_distribution<int>(0, 2 * n)(rng);
+  qp.C.resize(m_in, n);
+  qp.c_lo.resize(m_in);
+  qp.c_up.resize(m_in);
+  for (int i = 0; i < m_in; ++i) {
+    const double kind = U(rng);
+    if (i >= 1 && kind < 0.08) {  // duplicate of the previous row
+      qp.C.row(i) = qp.C.row(i - 1);
+      qp.c_lo[i] = qp.c_lo[i - 1];
+      qp.c_up[i] = qp.c_up[i - 1];
+      continue;
+    }
+    if (i >= 1 && kind < 0.14) {  // the previous row negated (bounds swapped)
+      qp.C.row(i) = -qp.C.row(i - 1);
+      qp.c_lo[i] = -qp.c_up[i - 1];
+      qp.c_up[i] = -qp.c_lo[i - 1];
+      continue;
+    }
+    if (i >= 2 && kind < 0.2) {  // a combination of two earlier rows
+      qp.C.row(i) = qp.C.row(i - 1) + 0.5 * qp.C.row(i - 2);
+    } else {
+      for (int j = 0; j < n; ++j) qp.C(i, j) = N(rng);
+    }
+    const double c = qp.C.row(i).dot(x0);
+    const double t = U(rng);
+    if (t < 0.2) {  // active lower at x0
+      qp.c_lo[i] = c;
+      qp.c_up[i] = U(rng) < 0.5 ? kInf : c + U(rng);
+    } else if (t < 0.4) {  // active upper at x0
+      qp.c_lo[i] = U(rng) < 0.5 ? -kInf : c - U(rng);
+      qp.c_up[i] = c;
+    } else if (t < 0.45) {  // equality written as an inequality row
+      qp.c_lo[i] = qp.c_up[i] = c;
+    } else if (t < 0.5) {  // free row
+      qp.c_lo[i] = -kInf;
+      qp.c_up[i] = kInf;
+    } else {  // slack both sides, one side maybe infinite
+      qp.c_lo[i] = U(rng) < 0.2 ? -kInf : c - 0.5 * U(rng);
+      qp.c_up[i] = U(rng) < 0.2 ? kInf : c + 0.5 * U(rng);
+    }
+  }
+  // Box bounds half of the time, some active at x0.
+  if (U(rng) < 0.5) {
+    qp.x_lo.resize(n);
+    qp.x_up.resize(n);
+    for (int j = 0; j < n; ++j) {
+      const double t = U(rng);
+      qp.x_lo[j] = t < 0.2 ? x0[j] : (t < 0.3 ? -kInf : x0[j] - U(rng));
+      const double s = U(rng);
+      qp.x_up[j] = s < 0.2 ? x0[j] : (s < 0.3 ? kInf : x0[j] + U(rng));
+    }
+  }
+  return qp;
+}
+
+}  // namespace
+
+TEST(QpSolver, UnconstrainedAndBoxAnalytic) {
+  // min 1/2 ||x||^2 - a'x, box [0, 1]: x = clamp(a), multipliers y_box = x - a.
+  DenseQp qp;
+  qp.H = MatrixXd::Identity(3, 3);
+  qp.g = -Eigen::Vector3d(2.0, -1.0, 0.5);
+  qp.A_eq.resize(0, 3);
+  qp.b_eq.resize(0);
+  qp.C.resize(0, 3);
+  qp.c_lo.resize(0);
+  qp.c_up.resize(0);
+  qp.x_lo = VectorXd::Zero(3);
+  qp.x_up = VectorXd::Ones(3);
+  QpSolver s(3, 0, 0);
+  ASSERT_EQ(solveQp(s, qp), QpStatus::kOptimal);
+  EXPECT_NEAR(s.x()[0], 1.0, 1e-14);
+  EXPECT_NEAR(s.x()[1], 0.0, 1e-14);
+  EXPECT_NEAR(s.x()[2], 0.5, 1e-14);
+  EXPECT_NEAR(s.yBox()[0], -1.0, 1e-14);  // upper bound active: y <= 0
+  EXPECT_NEAR(s.yBox()[1], 1.0, 1e-14);   // lower bound active: y >= 0
+  EXPECT_NEAR(s.yBox()[2], 0.0, 1e-14);
+}
+
+TEST(QpSolver, EqualityConstrainedLeastNorm) {
+  // min 1/2 ||x||^2 s.t. sum(x) = 1 -> x = 1/n, y = 1/n; a duplicated (redundant) equality is accepted.
+  const int n = 4;
+  DenseQp qp;
+  qp.H = MatrixXd::Identity(n, n);
+  qp.g = VectorXd::Zero(n);
+  qp.A_eq = MatrixXd::Ones(2, n);
+  qp.b_eq = VectorXd::Ones(2);
+  qp.C.resize(0, n);
+  qp.c_lo.resize(0);
+  qp.c_up.resize(0);
+  QpSolver s(n, 2, 0);
+  ASSERT_EQ(solveQp(s, qp), QpStatus::kOptimal);
+  for (int j = 0; j < n; ++j) EXPECT_NEAR(s.x()[j], 0.25, 1e-14);
+  EXPECT_NEAR(s.yEq().sum(), 0.25, 1e-14);
+  EXPECT_NEAR(s.objective(), 0.125, 1e-14);
+}
+
+TEST(QpSolver, AgreesWithIpoptOnRandomFeasibleProblems) {
+  std::mt19937 rng(20261122);
+  int compared = 0, oracle_failed = 0, polished = 0;
+  double worst_obj = 0.0, worst_kkt = 0.0;
+  QpSolver s;
+  for (int trial = 0; trial < 1100; ++trial) {
+    const DenseQp qp = randomFeasible(rng, trial < 1000 ? 25 : 45);
+    s.resize(qp.n(), static_cast<int>(qp.A_eq.rows()), static_cast<int>(qp.C.rows()));
+    const QpStatus st = solveQp(s, qp);
+    ASSERT_EQ(st, QpStatus::kOptimal) << "trial " << trial;
+    const double kkt = kktResidual(qp, s);
+    worst_kkt = std::max(worst_kkt, kkt);
+    EXPECT_LT(kkt, 1e-9) << "trial " << trial << " n " << qp.n();
+    EXPECT_NEAR(s.objective(), qp.objective(s.x()), 1e-10 * (1.0 + std::abs(s.objective())));
+    // Oracle: Ipopt's answer, polished on the active set it identifies (a certified optimum when the polished
+    // point is feasible with correctly signed multipliers; Ipopt alone is only accurate to ~1e-6 on the
+    // degenerate, ill-conditioned cases).
+    const auto oracle = centaur::test::solveWithIpopt(qp);
+    if (oracle.x.size() != qp.n()) {
+      ++oracle_failed;
+      continue;
+    }
+    VectorXd x_polished;
+    double oracle_objective = oracle.objective;
+    if (centaur::test::polishOnActiveSet(qp, oracle.x, x_polished)) {
+      oracle_objective = qp.objective(x_polished);
+      ++polished;
+    } else if (!oracle.solved) {
+      ++oracle_failed;
+      continue;
+    }
+    ++compared;
+    const double rel = std::abs(oracle_objective - s.objective()) / std::max(1.0, std::abs(oracle_objective));
+    worst_obj = std::max(worst_obj, rel);
+    EXPECT_LT(rel, 1e-8) << "trial " << trial << " ours " << s.objective() << " oracle " << oracle_objective
+                         << " ipopt raw " << oracle.objective << " status " << oracle.status;
+  }
+  std::printf("compared %d problems with Ipopt (%d polished on the active set, %d oracle failures); worst relative "
+              "objective difference %.3g, worst KKT residual %.3g\n",
+              compared, polished, oracle_failed, worst_obj, worst_kkt);
+  EXPECT_GE(compared, 1000);
+}
+
+TEST(QpSolver, ReportsInfeasibleProblems) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> N(0.0, 1.0);
+  QpSolver s;
+  for (int trial = 0; trial < 200; ++trial) {
+    DenseQp qp = randomFeasible(rng, 15);
+    const int n = qp.n();
+    const int kind = trial % 4;
+    VectorXd a(n);
+    for (int j = 0; j < n; ++j) a[j] = N(rng);
+    if (kind == 0) {  // inconsistent duplicated equality
+      qp.A_eq.conservativeResize(qp.A_eq.rows() + 2, n);
+      qp.b_eq.conservativeResize(qp.b_eq.size() + 2);
+      qp.A_eq.row(qp.A_eq.rows() - 2) = a.transpose();
+      qp.A_eq.row(qp.A_eq.rows() - 1) = 2.0 * a.transpose();
+      qp.b_eq.tail(2) << 1.0, 2.0 + 0.1;
+    } else {  // two inequality rows a'x >= 1 and a'x <= -1 (kind 2: via -a'x >= 1), or box vs. a row
+      const int extra = 2;
+      const int m = static_cast<int>(qp.C.rows());
+      qp.C.conservativeResize(m + extra, n);
+      qp.c_lo.conservativeResize(m + extra);
+      qp.c_up.conservativeResize(m + extra);
+      if (kind == 3) {
+        qp.x_lo = VectorXd::Constant(n, -1.0);
+        qp.x_up = VectorXd::Constant(n, 1.0);
+        qp.C.row(m) = VectorXd::Ones(n).transpose();
+        qp.c_lo[m] = n + 0.5;
+        qp.c_up[m] = kInf;
+        qp.C.row(m + 1) = a.transpose();
+        qp.c_lo[m + 1] = -kInf;
+        qp.c_up[m + 1] = kInf;
+      } else {
+        qp.C.row(m) = a.transpose();
+        qp.c_lo[m] = 1.0;
+        qp.c_up[m] = kInf;
+        qp.C.row(m + 1) = (kind == 1 ? 1.0 : -3.0) * a.transpose();
+        qp.c_lo[m + 1] = kind == 1 ? -kInf : 3.0;
+        qp.c_up[m + 1] = kind == 1 ? -1.0 : kInf;
+      }
+    }
+    s.resize(n, static_cast<int>(qp.A_eq.rows()), static_cast<int>(qp.C.rows()));
+    EXPECT_EQ(solveQp(s, qp), QpStatus::kInfeasible) << "trial " << trial << " kind " << kind;
+  }
+  // Crossed bounds are infeasible, too.
+  DenseQp qp;
+  qp.H = MatrixXd::Identity(2, 2);
+  qp.g = VectorXd::Zero(2);
+  qp.A_eq.resize(0, 2);
+  qp.b_eq.resize(0);
+  qp.C = MatrixXd::Ones(1, 2);
+  qp.c_lo = VectorXd::Constant(1, 1.0);
+  qp.c_up = VectorXd::Constant(1, 0.0);
+  s.resize(2, 0, 1);
+  EXPECT_EQ(solveQp(s, qp), QpStatus::kInfeasible);
+}
+
+TEST(QpSolver, WarmStartNeverChangesTheAnswer) {
+  std::mt19937 rng(99);
+  std::normal_distribution<double> N(0.0, 1.0);
+  QpSolver warm, cold;
+  cold.settings().warm_start = false;
+  for (int trial = 0; trial < 100; ++trial) {
+    DenseQp qp = randomFeasible(rng, 30);
+    warm.resize(qp.n(), static_cast<int>(qp.A_eq.rows()), static_cast<int>(qp.C.rows()));
+    cold.resize(qp.n(), static_cast<int>(qp.A_eq.rows()), static_cast<int>(qp.C.rows()));
+    // A sequence of perturbed problems (like successive control ticks): g, bounds and rhs drift.
+    for (int step = 0; step < 10; ++step) {
+      if (step > 0) {
+        for (int j = 0; j < qp.n(); ++j) qp.g[j] += 0.3 * N(rng);
+        for (int i = 0; i < qp.C.rows(); ++i) {
+          const double shift = 0.05 * N(rng);
+          qp.c_lo[i] += shift;
+          qp.c_up[i] += shift;
+          if (qp.c_lo[i] > qp.c_up[i]) qp.c_lo[i] = qp.c_up[i];
+        }
+      }
+      const QpStatus sw = solveQp(warm, qp);
+      const QpStatus sc = solveQp(cold, qp);
+      ASSERT_EQ(sw, sc) << "trial " << trial << " step " << step;
+      if (sc != QpStatus::kOptimal) break;  // the drift may make a problem infeasible: both agree
+      EXPECT_LT((warm.x() - cold.x()).norm(), 1e-8 * (1.0 + cold.x().norm())) << trial << " " << step;
+      EXPECT_NEAR(warm.objective(), cold.objective(), 1e-9 * (1.0 + std::abs(cold.objective())));
+      EXPECT_LT(kktResidual(qp, warm), 1e-9);
+    }
+  }
+}
+
+TEST(QpSolver, WarmStartSavesIterations) {
+  std::mt19937 rng(5);
+  DenseQp qp;
+  do {
+    qp = randomFeasible(rng, 40);
+  } while (qp.n() < 30 || qp.C.rows() < 30);
+  QpSolver s(qp.n(), static_cast<int>(qp.A_eq.rows()), static_cast<int>(qp.C.rows()));
+  ASSERT_EQ(solveQp(s, qp), QpStatus::kOptimal);
+  const int cold_iterations = s.iterations();
+  const VectorXd x = s.x();
+  ASSERT_EQ(solveQp(s, qp), QpStatus::kOptimal);
+  EXPECT_EQ(s.iterations(), 0);  // the re-imposed active set is already optimal
+  EXPECT_GT(cold_iterations, 0);
+  EXPECT_LT((s.x() - x).norm(), 1e-10);
+}
+
+TEST(QpSolver, InvalidInputAndNonConvexAreReported) {
+  DenseQp qp;
+  qp.H = MatrixXd::Identity(2, 2);
+  qp.g = VectorXd::Zero(2);
+  qp.A_eq.resize(0, 2);
+  qp.b_eq.resize(0);
+  qp.C = MatrixXd::Ones(1, 2);
+  qp.c_lo = VectorXd::Constant(1, -1.0);
+  qp.c_up = VectorXd::Constant(1, 1.0);
+  QpSolver s(2, 0, 1);
+  ASSERT_EQ(solveQp(s, qp), QpStatus::kOptimal);
+  DenseQp bad = qp;
+  bad.g[1] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(solveQp(s, bad), QpStatus::kInvalidInput);
+  bad = qp;
+  bad.c_lo[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(solveQp(s, bad), QpStatus::kInvalidInput);
+  bad = qp;
+  bad.C(0, 0) = kInf;
+  EXPECT_EQ(solveQp(s, bad), QpStatus::kInvalidInput);
+  bad = qp;
+  bad.H(1, 1) = -1.0;
+  EXPECT_EQ(solveQp(s, bad), QpStatus::kNotPositiveDefinite);
+  bad = qp;
+  bad.C = MatrixXd::Ones(2, 2);  // more rows than resize() allowed
+  bad.c_lo = VectorXd::Zero(2);
+  bad.c_up = VectorXd::Ones(2);
+  EXPECT_EQ(solveQp(s, bad), QpStatus::kInvalidInput);
+  EXPECT_STREQ(centaur::toString(QpStatus::kInfeasible), "infeasible");
+}
+
+TEST(QpSolver, IterationLimitIsReported) {
+  std::mt19937 rng(3);
+  DenseQp qp;
+  QpSolver s;
+  for (;;) {
+    qp = randomFeasible(rng, 30);
+    s.resize(qp.n(), static_cast<int>(qp.A_eq.rows()), static_cast<int>(qp.C.rows()));
+    s.settings().max_iterations = 0;
+    ASSERT_EQ(solveQp(s, qp), QpStatus::kOptimal);
+    if (s.iterations() >= 3) break;
+  }
+  s.resetWarmStart();
+  s.settings().max_iterations = 1;
+  EXPECT_EQ(solveQp(s, qp), QpStatus::kIterationLimit);
+}
