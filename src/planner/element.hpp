@@ -1,0 +1,74 @@
+#pragma once
+// Element functions: small smooth vector functions of a few scalar inputs, the building blocks of every
+// constraint and cost of an OCP (partially separable structure, as in LANCELOT/ifopt: derivatives stay small).
+// AdElement<Derived, NI, NO> turns one templated `compute(const S* in, S* out)` into exact values, Jacobians
+// (forward AD) and weighted Hessians (forward-over-forward AD) with Eigen's AutoDiffScalar, fixed sizes,
+// no heap allocation.
+#include <unsupported/Eigen/AutoDiff>
+
+#include <Eigen/Core>
+#include <string>
+
+namespace centaur::planner {
+
+class Element {
+ public:
+  virtual ~Element() = default;
+  virtual int numInputs() const = 0;
+  virtual int numOutputs() const = 0;
+  virtual const char* name() const = 0;
+  /// out: numOutputs values.
+  virtual void eval(const double* in, double* out) const = 0;
+  /// out: values; jac: numOutputs x numInputs, row-major.
+  virtual void evalJacobian(const double* in, double* out, double* jac) const = 0;
+  /// hess: numInputs x numInputs (full, symmetric, row-major) of sum_j w[j] out[j].
+  virtual void evalHessian(const double* in, const double* w, double* hess) const = 0;
+};
+
+template <class Derived, int NI, int NO>
+class AdElement : public Element {
+ public:
+  static constexpr int kInputs = NI;
+  static constexpr int kOutputs = NO;
+  using D1 = Eigen::AutoDiffScalar<Eigen::Matrix<double, NI, 1>>;
+  using D2 = Eigen::AutoDiffScalar<Eigen::Matrix<D1, NI, 1>>;
+
+  int numInputs() const override { return NI; }
+  int numOutputs() const override { return NO; }
+
+  void eval(const double* in, double* out) const override { derived().compute(in, out); }
+
+  void evalJacobian(const double* in, double* out, double* jac) const override {
+    D1 x[NI];
+    for (int i = 0; i < NI; ++i) x[i] = D1(in[i], NI, i);
+    D1 y[NO];
+    derived().compute(x, y);
+    for (int j = 0; j < NO; ++j) {
+      out[j] = y[j].value();
+      for (int i = 0; i < NI; ++i) jac[j * NI + i] = y[j].derivatives()[i];
+    }
+  }
+
+  void evalHessian(const double* in, const double* w, double* hess) const override {
+    D2 x[NI];
+    for (int i = 0; i < NI; ++i) {
+      x[i].value() = D1(in[i], NI, i);
+      for (int k = 0; k < NI; ++k) x[i].derivatives()[k] = D1(k == i ? 1.0 : 0.0);
+    }
+    D2 y[NO];
+    derived().compute(x, y);
+    for (int i = 0; i < NI * NI; ++i) hess[i] = 0.0;
+    for (int j = 0; j < NO; ++j) {
+      if (w[j] == 0.0) continue;
+      for (int a = 0; a < NI; ++a) {
+        const auto& da = y[j].derivatives()[a].derivatives();
+        for (int b = 0; b < NI; ++b) hess[a * NI + b] += w[j] * da[b];
+      }
+    }
+  }
+
+ private:
+  const Derived& derived() const { return static_cast<const Derived&>(*this); }
+};
+
+}  // namespace centaur::planner

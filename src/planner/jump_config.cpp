@@ -1,0 +1,243 @@
+#include "planner/jump_config.hpp"
+
+#include "common/yaml_reader.hpp"
+#include "model/template_params.hpp"
+
+namespace centaur::planner {
+
+namespace {
+
+// The embedded defaults. config/<primitive>.yaml ships the same text with comments.
+const char* kSquatJumpDefaults = R"(primitive: squat-jump
+model:
+  preset: centauro
+horizon:
+  intervals: 30
+  takeoff: 10
+  landing: 20
+  dt_min: 0.03
+  dt_max: 0.25
+  dt_init: 0.08
+feet: [[0.35, 0.35, -0.6408], [0.35, -0.35, -0.6408], [-0.35, 0.35, -0.6408], [-0.35, -0.35, -0.6408]]
+wheel_radius: 0.078
+workspace:
+  front_x: [0.1, 0.6]
+  rear_x: [-0.6, -0.1]
+  left_y: [0.1, 0.5]
+  right_y: [-0.5, -0.1]
+  z: [-0.80, -0.435]
+contact:
+  friction: pyramid
+  mu: 0.5
+  mu_wall: 1.0
+  force_threshold: 0.0
+  force_max: 10000.0
+  touchdown: same_position
+limits:
+  leg_force: 1500.0
+  velocity: 100.0
+  acceleration: 100.0
+target:
+  height: 1.0
+  wall_distance: 0.15
+cost:
+  base_height: 50.0
+  base_velocity: 0.0
+  joint_velocity: 1.0
+  force_rate: 1.0
+  acceleration_rate: 1.0e-3
+  base_orientation: 0.0
+  base_pose: 0.0
+solver:
+  tol: 1.0e-8
+  constr_viol_tol: 1.0e-4
+  max_iter: 3000
+  max_cpu_time: 600.0
+  hessian: exact
+  mu_strategy: adaptive
+  user_scaling: true
+  print_level: 0
+)";
+
+const char* kHalfSquatOverrides = R"(primitive: half-squat-jump
+contact:
+  mu: 1.0
+cost:
+  base_height: 0.0
+  base_pose: 50.0
+)";
+
+Eigen::Vector2d readInterval(YamlReader& r, const std::string& key, Eigen::Vector2d v, double lo, double hi) {
+  Eigen::VectorXd x = v;
+  r.get(key, x, lo, hi);
+  if (x[0] >= x[1]) r.fail(key, "expected [lower, upper] with lower < upper");
+  return x;
+}
+
+}  // namespace
+
+std::string defaultJumpYaml(const std::string& primitive) {
+  if (primitive == "squat-jump") return kSquatJumpDefaults;
+  if (primitive == "half-squat-jump") {
+    return toYamlString(mergeYaml(loadYamlString(kSquatJumpDefaults, "<defaults>"),
+                                  loadYamlString(kHalfSquatOverrides, "<defaults>")));
+  }
+  throw InputError("unknown primitive '" + primitive + "'; allowed: squat-jump, half-squat-jump");
+}
+
+double JumpConfig::initialWaistHeight() const {
+  double z = 0.0;
+  for (const auto& f : feet) z += f.z();
+  return wheel_radius - z / 4.0;
+}
+
+Eigen::Vector3d JumpConfig::initialFootWorld(int i) const {
+  return Eigen::Vector3d(0.0, 0.0, initialWaistHeight()) + feet[i];
+}
+
+double JumpConfig::wallX() const {
+  const double rear_x = 0.5 * (feet[2].x() + feet[3].x());
+  return rear_x - wall_distance - wheel_radius;
+}
+
+JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
+  JumpConfig c;
+  c.source = label;
+  c.effective = YAML::Clone(root);
+  YamlReader r(root, label);
+  r.get("primitive", c.primitive, {"squat-jump", "half-squat-jump"});
+  c.model = model::readTemplateParams(r.child("model"));
+
+  auto h = r.child("horizon");
+  h.get("intervals", c.horizon.intervals, 4, 200);
+  h.get("takeoff", c.horizon.takeoff, 1, c.horizon.intervals - 3);
+  h.get("landing", c.horizon.landing, c.horizon.takeoff + 2, c.horizon.intervals - 1);
+  h.get("dt_min", c.horizon.dt_min, 1e-3, 1.0);
+  h.get("dt_max", c.horizon.dt_max, 1e-3, 1.0);
+  if (c.horizon.dt_min > c.horizon.dt_max) {
+    h.fail("dt_min", "must not exceed horizon.dt_max (" + std::to_string(c.horizon.dt_max) + " s)");
+  }
+  c.horizon.dt_init = 0.5 * (c.horizon.dt_min + c.horizon.dt_max);
+  h.get("dt_init", c.horizon.dt_init, c.horizon.dt_min, c.horizon.dt_max);
+  h.finish();
+
+  if (r.has("feet")) {
+    const YAML::Node f = r.raw("feet");
+    if (!f.IsSequence() || f.size() != 4) r.fail("feet", "expected 4 points [x, y, z] in the waist frame (FL, FR, RL, RR), each in [-2, 2] m");
+    for (int i = 0; i < 4; ++i) {
+      if (!f[i].IsSequence() || f[i].size() != 3) r.fail("feet", "expected 4 points [x, y, z], each in [-2, 2] m");
+      for (int a = 0; a < 3; ++a) {
+        double v = 0;
+        try {
+          v = f[i][a].as<double>();
+        } catch (const YAML::Exception&) {
+          r.fail("feet", "expected numbers in [-2, 2] m");
+        }
+        if (!(v >= -2.0 && v <= 2.0)) r.fail("feet", "coordinate outside [-2, 2] m");
+        c.feet[i][a] = v;
+      }
+    }
+  } else {
+    c.feet = {Eigen::Vector3d(0.35, 0.35, -0.6408), Eigen::Vector3d(0.35, -0.35, -0.6408),
+              Eigen::Vector3d(-0.35, 0.35, -0.6408), Eigen::Vector3d(-0.35, -0.35, -0.6408)};
+  }
+  r.get("wheel_radius", c.wheel_radius, 0.0, 1.0);
+
+  auto w = r.child("workspace");
+  c.workspace.front_x = readInterval(w, "front_x", c.workspace.front_x, -2, 2);
+  c.workspace.rear_x = readInterval(w, "rear_x", c.workspace.rear_x, -2, 2);
+  c.workspace.left_y = readInterval(w, "left_y", c.workspace.left_y, -2, 2);
+  c.workspace.right_y = readInterval(w, "right_y", c.workspace.right_y, -2, 2);
+  c.workspace.z = readInterval(w, "z", c.workspace.z, -2, 2);
+  w.finish();
+  // The initial stance must lie inside the workspace box.
+  for (int i = 0; i < 4; ++i) {
+    const auto& x = (i < 2) ? c.workspace.front_x : c.workspace.rear_x;
+    const auto& y = (i % 2 == 0) ? c.workspace.left_y : c.workspace.right_y;
+    const Eigen::Vector3d& p = c.feet[i];
+    if (p.x() < x[0] || p.x() > x[1] || p.y() < y[0] || p.y() > y[1] || p.z() < c.workspace.z[0] || p.z() > c.workspace.z[1]) {
+      r.fail("feet", "initial foot " + std::to_string(i) + " lies outside the workspace box (workspace.*)");
+    }
+  }
+
+  auto ct = r.child("contact");
+  ct.get("friction", c.contact.friction, {"pyramid", "cone"});
+  ct.get("mu", c.contact.mu, 1e-3, 10.0);
+  ct.get("mu_wall", c.contact.mu_wall, 1e-3, 10.0);
+  ct.get("force_threshold", c.contact.force_threshold, 0.0, 1e4);
+  ct.get("force_max", c.contact.force_max, 1.0, 1e6);
+  ct.get("touchdown", c.contact.touchdown, {"same_position", "free"});
+  ct.finish();
+
+  auto l = r.child("limits");
+  l.get("leg_force", c.limits.leg_force, 1.0, 1e6);
+  l.get("velocity", c.limits.velocity, 0.1, 1e4);
+  l.get("acceleration", c.limits.acceleration, 0.1, 1e5);
+  l.finish();
+
+  auto t = r.child("target");
+  t.get("height", c.target_height, 0.0, 5.0);
+  t.get("wall_distance", c.wall_distance, 0.0, 1.0);
+  t.finish();
+
+  auto k = r.child("cost");
+  k.get("base_height", c.cost.base_height, 0.0, 1e6);
+  k.get("base_velocity", c.cost.base_velocity, 0.0, 1e6);
+  k.get("joint_velocity", c.cost.joint_velocity, 0.0, 1e6);
+  k.get("force_rate", c.cost.force_rate, 0.0, 1e6);
+  k.get("acceleration_rate", c.cost.acceleration_rate, 0.0, 1e6);
+  k.get("base_orientation", c.cost.base_orientation, 0.0, 1e6);
+  k.get("base_pose", c.cost.base_pose, 0.0, 1e6);
+  k.finish();
+
+  auto s = r.child("solver");
+  s.get("tol", c.solver.tol, 1e-12, 1.0);
+  s.get("constr_viol_tol", c.solver.constr_viol_tol, 1e-12, 1.0);
+  s.get("max_iter", c.solver.max_iter, 0, 100000);
+  s.get("max_cpu_time", c.solver.max_cpu_time, 0.01, 1e6);
+  s.get("hessian", c.solver.hessian, {"exact", "limited-memory"});
+  s.get("mu_strategy", c.solver.mu_strategy, {"adaptive", "monotone"});
+  s.get("user_scaling", c.solver.user_scaling);
+  s.get("print_level", c.solver.print_level, 0, 12);
+  s.finish();
+  r.finish();
+
+  // A squat jump whose target is below the start, or unreachable by construction, is bad input.
+  if (c.primitive == "squat-jump") {
+    const double z0 = c.initialWaistHeight();
+    if (c.target_height <= z0) {
+      throw InputError(label, "target.height", "target " + std::to_string(c.target_height) +
+                                                   " m must be above the initial waist height " + std::to_string(z0) + " m");
+    }
+    // Optimistic upper bound of the reachable apex: take-off at full leg extension with the speed that the
+    // leg forces can give over the whole extension stroke (work-energy), then a ballistic rise.
+    const double m = c.model.totalMass(), g = c.model.gravity;
+    const double stroke = c.workspace.z[1] - c.workspace.z[0];
+    const double work = (4.0 * c.limits.leg_force - m * g) * stroke;
+    const double v2 = work > 0 ? 2.0 * work / m : 0.0;
+    const double apex_max = c.wheel_radius - c.workspace.z[0] + v2 / (2.0 * g);
+    if (c.target_height > apex_max) {
+      throw InputError(label, "target.height", "target " + std::to_string(c.target_height) +
+                                                   " m is unreachable: with the workspace and leg-force limits the waist cannot rise above about " +
+                                                   std::to_string(apex_max) + " m");
+    }
+  }
+  return c;
+}
+
+JumpConfig loadJumpConfig(const std::string& primitive, const std::string& file, const std::vector<std::string>& overrides) {
+  YAML::Node root = loadYamlString(defaultJumpYaml(primitive), "<defaults>");
+  std::string label = "<defaults>";
+  if (!file.empty()) {
+    root = mergeYaml(root, loadYamlFile(file));
+    label = file;
+  }
+  for (const auto& o : overrides) applyOverride(root, o);
+  if (!overrides.empty()) label += " (with --set overrides)";
+  if (root["primitive"] && root["primitive"].as<std::string>() != primitive) {
+    throw InputError(label, "primitive", "is '" + root["primitive"].as<std::string>() + "' but the command plans '" + primitive + "'");
+  }
+  return parseJumpConfig(root, label);
+}
+
+}  // namespace centaur::planner

@@ -1,0 +1,16 @@
+#include "planner/template_elements.hpp"
+
+#include <cmath>
+
+namespace centaur::planner {
+
+FrictionPyramidElement::FrictionPyramidElement(const Eigen::Vector3d& normal, double mu, double threshold, double scale)
+    : n(normal.normalized()), mu_inner(mu / std::sqrt(2.0)), thr(threshold), inv_scale(1.0 / scale) {
+  // Any orthonormal tangent basis: start from the axis least aligned with n.
+  Eigen::Vector3d a = Eigen::Vector3d::UnitX();
+  if (std::abs(n.x()) > 0.9) a = Eigen::Vector3d::UnitY();
+  t1 = (a - a.dot(n) * n).normalized();
+  t2 = n.cross(t1);
+}
+
+}  // namespace centaur::planner
