@@ -341,7 +341,7 @@ def generate():
              ' castshadow="true"/>')
     o.append('    <geom name="ground" class="env" type="plane" size="20 20 0.1" material="grid"/>')
     o.append('    <body name="wall" pos="%s 0 0">' % fmt([WALL_X]))
-    o.append('      <geom name="wall" class="env" type="box" size="%g 2 1" pos="%g 0 1" material="wall"/>'
+    o.append('      <geom name="wall" class="env" type="box" size="%g 1 1" pos="%g 0 1" material="wall"/>'
              % (WALL_HALF_THICKNESS, -WALL_HALF_THICKNESS))
     o.append('    </body>')
     o.append('    <camera name="side" mode="trackcom" pos="0.1 -3.2 0.9" xyaxes="1 0 0 0 0.15 1"/>')
