@@ -79,12 +79,8 @@ void BaseEstimator::update(const RobotState& state, const bool stance[kWheels]) 
     for (int k = 0; k < kWheels; ++k) {
       if (!stance[k]) continue;
       const Eigen::Isometry3d T = model.framePose(f_centre_[k]);
-      const Eigen::Vector3d a = T.linear().col(2);
-      Eigen::Vector3d down = -(Eigen::Vector3d::UnitZ() - a.z() * a);
-      const double len = down.norm();
-      down = len > 1e-6 ? Eigen::Vector3d(down / len) : Eigen::Vector3d(-Eigen::Vector3d::UnitZ());
       centre[k] = T.translation();
-      contact[k] = centre[k] + r * down;
+      contact[k] = contactPoint(T, r);
     }
     if (unknown_start) {
       // no known start: x = y = 0, stance contact points on z = 0 on average (model base is at 0)

@@ -52,6 +52,16 @@ class BaseEstimator {
   /// One estimation step with the measurement and the stance flags (wheel k-1 in stance). No allocation.
   void update(const RobotState& state, const bool stance[kWheels]) noexcept;
 
+  /// Ground-contact point of a wheel on flat horizontal ground: the lowest point of the rim, given the
+  /// non-spinning wheel-centre frame (site wheel_centre_k, z = wheel axis) and the radius. (W)
+  static Eigen::Vector3d contactPoint(const Eigen::Isometry3d& w_T_centre, double radius) {
+    const Eigen::Vector3d a = w_T_centre.linear().col(2);
+    Eigen::Vector3d down = a.z() * a - Eigen::Vector3d::UnitZ();
+    const double len = down.norm();
+    down = len > 1e-6 ? Eigen::Vector3d(down / len) : Eigen::Vector3d(-Eigen::Vector3d::UnitZ());
+    return w_T_centre.translation() + radius * down;
+  }
+
   const Eigen::VectorXd& q() const { return q_; }  ///< nq, RobotModel conventions
   const Eigen::VectorXd& v() const { return v_; }  ///< nv, RobotModel conventions
   /// The anchor (world wheel-centre position) of wheel k while it is in stance.

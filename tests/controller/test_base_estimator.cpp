@@ -173,3 +173,17 @@ TEST_F(BaseEstimatorTest, UpdateDoesNotAllocate) {
   }
   EXPECT_EQ(g_allocations.load() - before, 0);
 }
+
+TEST(BaseEstimatorContactPoint, LowestRimPointForTiltedWheels) {
+  // axis horizontal: straight below the centre
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitX()).toRotationMatrix();  // z axis -> -y
+  T.translation() = Vector3d(1, 2, 0.078);
+  EXPECT_LT((BaseEstimator::contactPoint(T, 0.078) - Vector3d(1, 2, 0)).norm(), 1e-12);
+  // axis tilted by 30 deg about x: the rim's lowest point is r cos(30 deg) below the centre
+  T.linear() = Eigen::AngleAxisd(M_PI / 2 + M_PI / 6, Vector3d::UnitX()).toRotationMatrix();
+  const Vector3d c = BaseEstimator::contactPoint(T, 0.1);
+  EXPECT_NEAR(c.z(), 0.078 - 0.1 * std::cos(M_PI / 6), 1e-12);
+  EXPECT_NEAR((c - T.translation()).norm(), 0.1, 1e-12);
+  EXPECT_NEAR((c - T.translation()).dot(T.linear().col(2)), 0.0, 1e-12);
+}
