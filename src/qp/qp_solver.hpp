@@ -45,6 +45,10 @@ struct QpSettings {
   /// active subspace is below dependency_tol * ||J'n|| (J = L^-T Q, the H-metric). Dependent equalities that are
   /// consistent (residual within feasibility_tol) are skipped; inconsistent ones make the problem infeasible.
   double dependency_tol = 1e-10;
+  /// When a violated constraint is linearly dependent on the active ones and no active multiplier can be
+  /// released, the problem is infeasible, unless the violation is below infeasibility_tol (same scaling as
+  /// feasibility_tol): then it is a rounding artefact of a degenerate problem and the constraint is ignored.
+  double infeasibility_tol = 1e-9;
   /// Re-impose the previous optimal active set at the start of solve().
   bool warm_start = true;
 };
@@ -94,6 +98,7 @@ class QpSolver {
   void addToActiveSet(int id, bool equality);  // QR update with d_ (d_ is destroyed)
   void dropFromActiveSet(int pos);             // QR downdate
   void recomputePrimalDual();        // x and u from the current factorisation (warm start)
+  void restoreDualFeasibility();     // recompute, dropping negative inequality multipliers
   bool isDependent() const;          // from d_ after computeD
   bool violated(int id, double* scaled_violation) const;
 

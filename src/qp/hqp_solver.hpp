@@ -1,0 +1,71 @@
+#pragma once
+// Hierarchical QP: solves a Stack (qp/stack.hpp) as a cascade of dense QPs, one per priority level.
+//
+// Level k (0 = highest) minimises
+//     sum_{terms t in level k} scale_t || A_t x - lambda_t b_t ||^2_{W_t}  +  eps ||x||^2
+//     s.t.  A_j x = A_j x_j*   for every level j < k     (each higher level keeps its optimal residual)
+//           every constraint of the stack (box bounds and inequality rows)
+// where A_j stacks the (selected) rows of level j's tasks and x_j* is level j's solution. Hence a lower level
+// can never worsen a higher one (up to eps and the solver tolerances). eps = Stack::regularisation > 0 keeps
+// every level's Hessian positive definite. Each level has its own QpSolver (warm-started from the previous
+// tick's active set). The solution of the last level is returned.
+//
+// Lifecycle: configure(stack, n) checks the stack and allocates everything; then every tick
+//   update()  -> each distinct task / constraint recomputes its A, b / bounds (once, even if shared)
+//   solve(x)  -> no allocation, no throw, returns a status the caller must check.
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "qp/qp_solver.hpp"
+#include "qp/stack.hpp"
+
+namespace centaur {
+
+class HqpSolver {
+ public:
+  HqpSolver() = default;
+  HqpSolver(const Stack& stack, int n) { configure(stack, n); }
+
+  /// Check (every task and constraint has n columns, >= 1 level, regularisation > 0; throws
+  /// std::invalid_argument naming the task) and allocate. Applies `settings` to every level's QpSolver.
+  void configure(const Stack& stack, int n, const QpSettings& settings = QpSettings());
+
+  /// update() on every distinct task and constraint of the stack. Must not allocate nor throw (the tasks'
+  /// update() must honour that).
+  void update();
+
+  /// Solve the cascade with the tasks' current data; x (size n) receives the last level's solution, clipped to
+  /// the box bounds (a change within the QP's feasibility tolerance) so that bounds hold exactly.
+  /// On failure of level k, failedLevel() == k and x holds the solution of level k-1 (unchanged if k == 0).
+  [[nodiscard]] QpStatus solve(Eigen::Ref<Eigen::VectorXd> x);
+
+  int numVariables() const { return n_; }
+  int numLevels() const { return static_cast<int>(stack_.levels.size()); }
+  int failedLevel() const { return failed_level_; }
+  const Stack& stack() const { return stack_; }
+  QpSolver& levelSolver(int k) { return solvers_[k]; }
+  /// Solution of level k in the last solve (levels up to the failed one).
+  const Eigen::VectorXd& levelSolution(int k) const { return level_x_[k]; }
+
+  /// sum_t scale_t ||A_t x - lambda_t b_t||^2_W over level k's terms (no allocation).
+  double levelCost(int k, const Eigen::Ref<const Eigen::VectorXd>& x);
+
+ private:
+  void assembleLevel(int k);  // H_, g_ and the level's rows in E_
+
+  Stack stack_;
+  int n_ = 0;
+  int m_in_ = 0;
+  bool has_box_ = false;
+  std::vector<Task*> tasks_;              // distinct tasks, in order of first appearance
+  std::vector<Constraint*> constraints_;  // distinct constraints
+  std::vector<int> level_offset_;         // first row of level k in E_ (size levels + 1)
+  std::vector<QpSolver> solvers_;
+  std::vector<Eigen::VectorXd> level_x_;
+  Eigen::MatrixXd H_, E_, As_, WAs_, Wsel_, C_;
+  Eigen::VectorXd g_, e_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
+  int failed_level_ = -1;
+};
+
+}  // namespace centaur

