@@ -20,7 +20,7 @@ struct Renderer::Impl {
 };
 
 Renderer::Renderer(const mjModel* model, int width, int height, const std::string& camera,
-                   const std::string& track_body)
+                   const std::string& track_body, bool shadows, bool reflections)
     : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
   Impl& r = *impl_;
   r.gl = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
@@ -38,6 +38,8 @@ Renderer::Renderer(const mjModel* model, int width, int height, const std::strin
   mjv_defaultOption(&r.option);
   mjr_defaultContext(&r.context);
   mjv_makeScene(r.model, &r.scene, 10000);
+  r.scene.flags[mjRND_SHADOW] = shadows ? 1 : 0;
+  r.scene.flags[mjRND_REFLECTION] = reflections ? 1 : 0;
   mjr_makeContext(r.model, &r.context, mjFONTSCALE_100);
   mjr_setBuffer(mjFB_OFFSCREEN, &r.context);
   if (r.context.currentBuffer != mjFB_OFFSCREEN) throw RuntimeError("offscreen rendering is not supported");

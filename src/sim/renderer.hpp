@@ -13,8 +13,9 @@ namespace centaur::sim {
 class Renderer {
  public:
   /// `camera`: an MJCF camera name; empty or unknown -> a free camera tracking body `track_body`.
+  /// `shadows` / `reflections` are the costly parts of software rendering (~5x slower with both on).
   Renderer(const mjModel* model, int width, int height, const std::string& camera = "side",
-           const std::string& track_body = "pelvis");
+           const std::string& track_body = "pelvis", bool shadows = true, bool reflections = true);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

@@ -29,6 +29,8 @@ render:
   height: 480             # [px] video/snapshot height, [16, 4096]
   fps: 30.0               # [1/s] video frame rate, [1, 240]
   camera: side            # MJCF camera name; "" = free camera tracking the pelvis
+  shadows: true           # render shadows (costly in software GL)
+  reflections: false      # render floor reflections (costly in software GL)
 log:
   decimation: 1           # log every N-th control period, [1, 1000]
 controller: {}            # the scenario controller's own section (see docs/sim.md)
@@ -85,6 +87,8 @@ SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label) 
     v.get("height", c.render.height, 16, 4096);
     v.get("fps", c.render.fps, 1.0, 240.0);
     v.get("camera", c.render.camera);
+    v.get("shadows", c.render.shadows);
+    v.get("reflections", c.render.reflections);
     v.finish();
   }
   {

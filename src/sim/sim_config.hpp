@@ -20,6 +20,8 @@ struct RenderSettings {
   int height = 480;           ///< [px]
   double fps = 30.0;          ///< [1/s] video frame rate
   std::string camera = "side";  ///< MJCF camera name; "" or missing -> a free camera tracking the pelvis
+  bool shadows = true;          ///< render shadows (slow in software GL)
+  bool reflections = false;     ///< render floor reflections (slow in software GL)
 };
 
 struct OutcomeSettings {

@@ -60,7 +60,8 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
   std::unique_ptr<VideoWriter> video;
   if (!out.video_path.empty() || !out.snapshot_path.empty()) {
     renderer = std::make_unique<Renderer>(robot.model(), config.render.width, config.render.height,
-                                          config.render.camera);
+                                          config.render.camera, "pelvis", config.render.shadows,
+                                          config.render.reflections);
   }
   if (!out.video_path.empty()) {
     video = std::make_unique<VideoWriter>(out.video_path, config.render.width, config.render.height, config.render.fps);
