@@ -23,6 +23,7 @@ constexpr hsize_t kNv = 18;     // template nu: v(3), omega(3), qdot_C (12)
 constexpr hsize_t kFeet = 4;
 constexpr hsize_t kJoints = 12;
 constexpr hsize_t kChunkRows = 1024;
+constexpr unsigned kMaxCompactAttributes = 4096;
 
 // Group attributes the library owns; Primitive::scalars/vectors/strings may not use these names.
 const std::set<std::string>& reservedAttributes() {
@@ -211,7 +212,13 @@ void writeVector(const Writer& w, hid_t loc, const Primitive& p, const std::stri
 }
 
 void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
-  Handle g(w.check(H5Gcreate2(file, p.name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+  // Keep the group's attributes in compact storage (in the object header). HDF5 1.10 crashes in H5Ocopy
+  // (h5copy, h5py's Group.copy) on variable-length string attributes held in dense storage, which the
+  // library would otherwise switch to beyond 8 attributes. Strings live in the global heap, so compact
+  // storage has no practical size limit for them.
+  Handle gcpl(w.check(H5Pcreate(H5P_GROUP_CREATE), "property list"), H5Pclose);
+  w.check(H5Pset_attr_phase_change(gcpl.get(), kMaxCompactAttributes, 0), "attribute storage", 0);
+  Handle g(w.check(H5Gcreate2(file, p.name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
                    "group '" + p.name + "'"),
            H5Gclose);
   const hid_t gid = g.get();
