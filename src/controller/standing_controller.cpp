@@ -9,6 +9,7 @@ namespace centaur {
 const char* StandingParams::defaultsYaml() {
   return R"(controller:
   feedforward: true         # gravity-compensating torque feed-forward (static wheel forces)
+  use_base_estimator: true  # base pose from the BaseEstimator (false: IMU orientation, position 0)
   tangential_weight: 100.0  # [-] cost of tangential vs normal wheel forces in the split, [1, 1e6]
   friction: 0.6             # [-] friction coefficient of the cone projection, [0.05, 5]
   wheel_radius: 0.078       # [m] wheel radius (contact point below the wheel centre), [0.01, 0.5]
@@ -26,6 +27,7 @@ const char* StandingParams::defaultsYaml() {
 
 void StandingParams::read(YamlReader& r) {
   r.get("feedforward", feedforward);
+  r.get("use_base_estimator", use_base_estimator);
   r.get("tangential_weight", tangential_weight, 1.0, 1e6);
   r.get("friction", friction, 0.05, 5.0);
   r.get("wheel_radius", wheel_radius, 0.01, 0.5);
@@ -91,6 +93,11 @@ StandingController::StandingController(const std::string& mjcf_path, const Stand
     kp_[i] = g.kp;
     kd_[i] = g.kd;
   }
+  if (params_.use_base_estimator) {
+    BaseEstimatorParams ep;
+    ep.wheel_radius = params_.wheel_radius;
+    estimator_.init(mjcf_path, ep);
+  }
   for (int k = 0; k < 4; ++k) {
     w_inv_.segment<3>(3 * k) << 1.0 / params_.tangential_weight, 1.0 / params_.tangential_weight, 1.0;
   }
@@ -113,15 +120,21 @@ void StandingController::start(const RobotState& state, JointCommand& command) {
 }
 
 void StandingController::computeFeedforward(const RobotState& state, JointCommand& command) noexcept {
-  // Base orientation from the IMU; position zero (gravity and the base rows of the contact Jacobians
-  // depend only on relative positions); static: v = 0.
-  const Eigen::Quaterniond w_q_base = (state.imu_quat * imu_q_base_).normalized();
-  q_model_.head<3>().setZero();
-  q_model_[3] = w_q_base.w();
-  q_model_[4] = w_q_base.x();
-  q_model_[5] = w_q_base.y();
-  q_model_[6] = w_q_base.z();
-  q_model_.tail(n_) = state.q;
+  // Base pose (only its orientation matters for gravity and the base rows of the contact Jacobians);
+  // static: v = 0.
+  if (params_.use_base_estimator) {
+    static constexpr bool kAllStance[BaseEstimator::kWheels] = {true, true, true, true};
+    estimator_.update(state, kAllStance);
+    q_model_ = estimator_.q();
+  } else {
+    const Eigen::Quaterniond w_q_base = (state.imu_quat * imu_q_base_).normalized();
+    q_model_.head<3>().setZero();
+    q_model_[3] = w_q_base.w();
+    q_model_[4] = w_q_base.x();
+    q_model_[5] = w_q_base.y();
+    q_model_[6] = w_q_base.z();
+    q_model_.tail(n_) = state.q;
+  }
   model_->update(q_model_, v_model_);
   model_->gravityForces(g_);
   for (int k = 0; k < 4; ++k) {

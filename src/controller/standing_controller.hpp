@@ -2,10 +2,11 @@
 // Standing: hold the home posture with joint impedance plus a gravity-compensating torque feed-forward.
 //
 // Every tick (1 kHz):
-//   1. base pose for the model: orientation w_R_base = w_R_imu * imu_R_base from the IMU; position
-//      irrelevant for gravity and for contact Jacobians' base rows (they depend on differences of
-//      positions only), set so that the wheels' lowest points are at z = 0 (leg kinematics);
-//      velocity zero (static balance).
+//   1. base pose for the model: with use_base_estimator (default) the BaseEstimator's (IMU orientation,
+//      position from leg kinematics with all four wheels in stance); otherwise orientation
+//      w_R_base = w_R_imu * imu_R_base and position 0. Either way only the orientation matters here:
+//      gravity and the base rows of the contact Jacobians depend on relative positions only.
+//      Velocity zero (static balance).
 //   2. g(q) from RobotModel; per-wheel contact point c_k = wheel centre - r e_z (W) and its Jacobian J_k.
 //   3. static wheel forces F = [f_1..f_4] (12) balancing the 6 floating-base rows: J_b^T F = g_b, with
 //      the weighted least-norm solution F = W^-1 A^T (A W^-1 A^T)^-1 g_b, A = J_b^T (6 x 12),
@@ -24,6 +25,7 @@
 #include <Eigen/Core>
 
 #include "common/yaml_reader.hpp"
+#include "controller/base_estimator.hpp"
 #include "controller/robot_interface.hpp"
 #include "model/robot_model.hpp"
 
@@ -46,6 +48,7 @@ struct StandingParams {
   JointGains wrist{50.0, 0.5};
   JointGains other{100.0, 1.0};
   bool feedforward = true;           ///< gravity-compensating feed-forward on/off
+  bool use_base_estimator = true;    ///< base pose from BaseEstimator (else IMU orientation, position 0)
   double tangential_weight = 100.0;  ///< [-] w_t, cost of tangential vs normal wheel forces
   double friction = 0.6;             ///< [-] mu assumed for the cone projection
   double wheel_radius = 0.078;       ///< [m]
@@ -70,6 +73,8 @@ class StandingController final : public Controller {
 
   const RobotModel& model() const { return *model_; }
   const StandingParams& params() const { return params_; }
+  /// The base estimate used by the last tick (RobotModel's q layout, nq).
+  const Eigen::VectorXd& baseConfiguration() const { return q_model_; }
   /// Wheel forces of the last tick (world frame, columns = wheels) [N].
   const Eigen::Matrix<double, 3, 4>& wheelForces() const { return forces_; }
 
@@ -78,6 +83,7 @@ class StandingController final : public Controller {
 
   StandingParams params_;
   std::unique_ptr<RobotModel> model_;
+  BaseEstimator estimator_;
   int n_ = 0;
   std::array<int, 4> wheel_ids_{};
   Eigen::Quaterniond imu_q_base_ = Eigen::Quaterniond::Identity();  // imu_R_base
