@@ -113,20 +113,20 @@ class Writer {
     if (id < 0) fail(what);
     return id;
   }
-  void check(herr_t rc, const std::string& what, int /*tag*/) const {
+  void ok(herr_t rc, const std::string& what) const {
     if (rc < 0) fail(what);
   }
 
   void stringAttribute(hid_t loc, const std::string& name, const std::string& value) const {
     Handle type(check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
-    check(H5Tset_size(type.get(), H5T_VARIABLE), "string type", 0);
-    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "string type", 0);
+    ok(H5Tset_size(type.get(), H5T_VARIABLE), "string type");
+    ok(H5Tset_cset(type.get(), H5T_CSET_UTF8), "string type");
     Handle space(check(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
     Handle attr(check(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
                       "attribute '" + name + "'"),
                 H5Aclose);
     const char* data = value.c_str();
-    check(H5Awrite(attr.get(), type.get(), &data), "attribute '" + name + "'", 0);
+    ok(H5Awrite(attr.get(), type.get(), &data), "attribute '" + name + "'");
   }
 
   void doubleAttribute(hid_t loc, const std::string& name, double value) const {
@@ -134,7 +134,7 @@ class Writer {
     Handle attr(check(H5Acreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
                       "attribute '" + name + "'"),
                 H5Aclose);
-    check(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, &value), "attribute '" + name + "'", 0);
+    ok(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, &value), "attribute '" + name + "'");
   }
 
   void intAttribute(hid_t loc, const std::string& name, int value) const {
@@ -142,7 +142,7 @@ class Writer {
     Handle attr(check(H5Acreate2(loc, name.c_str(), H5T_STD_I32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
                       "attribute '" + name + "'"),
                 H5Aclose);
-    check(H5Awrite(attr.get(), H5T_NATIVE_INT, &value), "attribute '" + name + "'", 0);
+    ok(H5Awrite(attr.get(), H5T_NATIVE_INT, &value), "attribute '" + name + "'");
   }
 
   void vectorAttribute(hid_t loc, const std::string& name, const std::vector<double>& value) const {
@@ -151,7 +151,7 @@ class Writer {
     Handle attr(check(H5Acreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
                       "attribute '" + name + "'"),
                 H5Aclose);
-    if (n > 0) check(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, value.data()), "attribute '" + name + "'", 0);
+    if (n > 0) ok(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, value.data()), "attribute '" + name + "'");
   }
 
   /// A dataset of `dims` from contiguous row-major memory `data` (memory type `mem_type`).
@@ -165,15 +165,15 @@ class Writer {
     if (total > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
       std::vector<hsize_t> chunk = dims;
       chunk[0] = std::min<hsize_t>(dims[0], kChunkRows);
-      check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "chunking", 0);
-      check(H5Pset_shuffle(dcpl.get()), "shuffle filter", 0);
-      check(H5Pset_deflate(dcpl.get(), 4), "deflate filter", 0);
+      ok(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "chunking");
+      ok(H5Pset_shuffle(dcpl.get()), "shuffle filter");
+      ok(H5Pset_deflate(dcpl.get(), 4), "deflate filter");
     }
     Handle ds(check(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
                     "dataset '" + name + "'"),
               H5Dclose);
     if (total > 0) {
-      check(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "dataset '" + name + "'", 0);
+      ok(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "dataset '" + name + "'");
     }
     stringAttribute(ds.get(), "units", meta.units);
     if (meta.frame != nullptr) stringAttribute(ds.get(), "frame", meta.frame);
@@ -217,7 +217,7 @@ void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
   // library would otherwise switch to beyond 8 attributes. Strings live in the global heap, so compact
   // storage has no practical size limit for them.
   Handle gcpl(w.check(H5Pcreate(H5P_GROUP_CREATE), "property list"), H5Pclose);
-  w.check(H5Pset_attr_phase_change(gcpl.get(), kMaxCompactAttributes, 0), "attribute storage", 0);
+  w.ok(H5Pset_attr_phase_change(gcpl.get(), kMaxCompactAttributes, 0), "attribute storage");
   Handle g(w.check(H5Gcreate2(file, p.name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
                    "group '" + p.name + "'"),
            H5Gclose);
@@ -328,11 +328,10 @@ void checkName(const std::string& target, const std::string& name) {
 void writeFile(const std::string& tmp, const std::string& target, const std::vector<const Primitive*>& prims) {
   const Writer w(target);
   Handle fcpl(w.check(H5Pcreate(H5P_FILE_CREATE), "property list"), H5Pclose);
-  w.check(H5Pset_link_creation_order(fcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
-          "creation order", 0);
+  w.ok(H5Pset_link_creation_order(fcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), "creation order");
   Handle fapl(w.check(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
   // The 1.8 format: readable by HDF5 >= 1.8 (h5py, MATLAB) and stores large attributes (config_yaml) densely.
-  w.check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), "format version", 0);
+  w.ok(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), "format version");
   Handle file(w.check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), "cannot create " + tmp),
               H5Fclose);
   w.stringAttribute(file.get(), "format", "centaur-primitive");
