@@ -127,10 +127,17 @@ void printHuman(const planner::Primitive& p, const planner::PrimitiveSummary& s)
   o << "  peak |tau|  " << fmt("%.1f N", s.peak_abs_tau) << " ("
     << (s.peak_abs_tau_joint >= 0 ? kJointNames[s.peak_abs_tau_joint] : "-") << ") at "
     << fmt("%.3f s", s.peak_abs_tau_time) << "\n";
-  if (!p.scalars.empty()) {
-    o << "  model      ";
-    for (const auto& [k, v] : p.scalars) o << " " << k << "=" << fmt("%.6g", v);
-    o << "\n";
+  if (!p.scalars.empty()) {  // metadata scalars, wrapped at ~100 columns
+    std::string line = "  metadata   ";
+    for (const auto& [k, v] : p.scalars) {
+      const std::string item = " " + k + "=" + fmt("%.6g", v);
+      if (line.size() + item.size() > 100 && line.size() > 13) {
+        o << line << "\n";
+        line = "             ";
+      }
+      line += item;
+    }
+    o << line << "\n";
   }
   std::cout << o.str();
 }
