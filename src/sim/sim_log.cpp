@@ -33,7 +33,16 @@ void push(std::vector<double>& v, const Eigen::Ref<const Eigen::VectorXd>& x) {
 }
 }  // namespace
 
-void SimLog::append(const MujocoRobot& robot, const RobotState& s, const JointCommand& c) {
+void SimLog::appendTruth(const MujocoRobot& robot) {
+  push(base_pos_, robot.basePosition());
+  const Eigen::Quaterniond bq = robot.baseOrientation();
+  base_quat_.insert(base_quat_.end(), {bq.w(), bq.x(), bq.y(), bq.z()});
+  push(base_vel_, robot.baseVelocity());
+  robot.contactForces(force_buffer_);
+  for (Eigen::Index k = 0; k < force_buffer_.cols(); ++k) push(wheel_force_, force_buffer_.col(k));
+}
+
+void SimLog::appendLoop(const MujocoRobot& robot, const RobotState& s, const JointCommand& c) {
   t_.push_back(s.t);
   push(q_, s.q);
   push(qd_, s.qd);
@@ -48,12 +57,6 @@ void SimLog::append(const MujocoRobot& robot, const RobotState& s, const JointCo
   imu_quat_.insert(imu_quat_.end(), {s.imu_quat.w(), s.imu_quat.x(), s.imu_quat.y(), s.imu_quat.z()});
   push(imu_omega_, s.imu_omega);
   push(imu_acc_, s.imu_acc);
-  push(base_pos_, robot.basePosition());
-  const Eigen::Quaterniond bq = robot.baseOrientation();
-  base_quat_.insert(base_quat_.end(), {bq.w(), bq.x(), bq.y(), bq.z()});
-  push(base_vel_, robot.baseVelocity());
-  robot.contactForces(force_buffer_);
-  for (Eigen::Index k = 0; k < force_buffer_.cols(); ++k) push(wheel_force_, force_buffer_.col(k));
 }
 
 namespace {
@@ -116,11 +119,11 @@ void SimLog::writeHdf5(const std::string& path, const std::string& config_yaml, 
   ok &= writeDataset(file, "q", q_, {N, n}, "rad", "measured joint positions (as given to the controller)");
   ok &= writeDataset(file, "qd", qd_, {N, n}, "rad/s", "measured joint velocities (as given to the controller)");
   ok &= writeDataset(file, "tau_cmd", tau_cmd_, {N, n}, "N m",
-                     "impedance-law torque before saturation, last physics step of the previous period");
+                     "impedance-law torque before saturation, last physics step of the period");
   ok &= writeDataset(file, "tau_meas", tau_meas_, {N, n}, "N m",
                      "measured joint torques (= applied actuator torques, plus noise if enabled)");
   ok &= writeDataset(file, "tau_applied", tau_applied_, {N, n}, "N m",
-                     "actuator torques applied in the last physics step (after saturation), ground truth");
+                     "actuator torques applied in the period's last physics step (after saturation), ground truth");
   ok &= writeDataset(file, "q_ref", q_ref_, {N, n}, "rad", "controller position reference");
   ok &= writeDataset(file, "qd_ref", qd_ref_, {N, n}, "rad/s", "controller velocity reference");
   ok &= writeDataset(file, "tau_ff", tau_ff_, {N, n}, "N m", "controller torque feed-forward");
@@ -129,12 +132,12 @@ void SimLog::writeHdf5(const std::string& path, const std::string& config_yaml, 
   ok &= writeDataset(file, "imu_quat", imu_quat_, {N, 4}, "-", "IMU orientation w_R_imu, order w, x, y, z");
   ok &= writeDataset(file, "imu_omega", imu_omega_, {N, 3}, "rad/s", "IMU angular velocity, IMU frame");
   ok &= writeDataset(file, "imu_acc", imu_acc_, {N, 3}, "m/s^2", "IMU specific force, IMU frame");
-  ok &= writeDataset(file, "base_pos", base_pos_, {N, 3}, "m", "ground truth pelvis position w_p_base");
+  ok &= writeDataset(file, "base_pos", base_pos_, {N, 3}, "m", "ground truth pelvis position w_p_base at t");
   ok &= writeDataset(file, "base_quat", base_quat_, {N, 4}, "-", "ground truth pelvis orientation, order w, x, y, z");
   ok &= writeDataset(file, "base_vel", base_vel_, {N, 6}, "m/s, rad/s",
                      "ground truth pelvis velocity: linear (world frame), angular (pelvis frame)");
   ok &= writeDataset(file, "wheel_force", wheel_force_, {N, nc, 3}, "N",
-                     "ground truth contact force on each contact body (sum of its contacts), world frame");
+                     "ground truth contact force on each contact body (sum of its contacts), world frame, last physics step before t");
   {
     hid_t ds = H5Dopen2(file, "imu_quat", H5P_DEFAULT);
     if (ds >= 0) {

@@ -19,8 +19,12 @@ class SimLog {
   /// Reserve room for `capacity` samples (no reallocation below that).
   SimLog(std::vector<std::string> joint_names, std::vector<std::string> contact_bodies, std::size_t capacity);
 
-  /// Append one sample: the measurement the controller saw, its command, and the simulator's ground truth.
-  void append(const MujocoRobot& robot, const RobotState& measured, const JointCommand& command);
+  /// Sample k, part 1, at the START of control period k (time t_k): the simulator's ground truth
+  /// (base pose/velocity at t_k; wheel forces of the last physics step before t_k).
+  void appendTruth(const MujocoRobot& robot);
+  /// Sample k, part 2, right AFTER control period k: the measurement the controller saw (time t_k), its
+  /// command, and the impedance torques of the period's last physics step.
+  void appendLoop(const MujocoRobot& robot, const RobotState& measured, const JointCommand& command);
 
   std::size_t size() const { return t_.size(); }
   const std::vector<std::string>& jointNames() const { return joint_names_; }

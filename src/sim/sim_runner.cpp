@@ -109,10 +109,12 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
       next_frame_t += 1.0 / config.render.fps;
     }
     // --- one control period: measure, controller, impedance at 2 kHz ---
+    const bool log_now = log && k % config.log_decimation == 0;
+    if (log_now) log->appendTruth(robot);
     const auto w0 = std::chrono::steady_clock::now();
     robot.controlPeriod(controller, state, command);
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-    if (log && k % config.log_decimation == 0) log->append(robot, state, command);
+    if (log_now) log->appendLoop(robot, state, command);
   }
   sum.control_periods = k;
   sum.physics_steps = k * robot.settings().control_decimation;
