@@ -208,3 +208,15 @@ TEST(Renderer, SnapshotOfTheTestRobotIsNotBlank) {
   EXPECT_GT(fs::file_size(dir / "snap.png"), 1000u);
   fs::remove_all(dir);
 }
+
+TEST(SimConfig, ShippedStandConfigEqualsTheEmbeddedDefaults) {
+  const std::string shipped = std::string(CENTAUR_SOURCE_DIR) + "/config/sim_stand.yaml";
+  const Scenario* stand = findScenario("stand");
+  ASSERT_NE(stand, nullptr);
+  const SimConfig a = loadSimConfig(stand->defaults_yaml, shipped, {});
+  const SimConfig b = loadSimConfig(stand->defaults_yaml, "", {});
+  EXPECT_EQ(toYamlString(a.effective), toYamlString(b.effective));
+  // and the shipped file alone (without the scenario defaults) already holds every controller key
+  const SimConfig c = loadSimConfig("", shipped, {});
+  EXPECT_EQ(toYamlString(c.effective), toYamlString(b.effective));
+}
