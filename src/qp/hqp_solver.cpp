@@ -66,7 +66,8 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   c_up_.setZero(m_in_);
   x_lo_.setZero(has_box_ ? n : 0);
   x_up_.setZero(has_box_ ? n : 0);
-  solvers_.assign(levels, QpSolver());
+  solvers_.clear();
+  solvers_.resize(levels);  // default-constructed in place, then sized
   level_x_.assign(levels, Eigen::VectorXd::Zero(n));
   for (int k = 0; k < levels; ++k) {
     solvers_[k].resize(n, level_offset_[k], m_in_);

@@ -73,6 +73,7 @@ void QpSolver::resize(int n, int m_eq_max, int m_in_max) {
   x_.setZero(n_);
   tmp_.setZero(std::max(n_, m_in_max_));
   row_norm_.setZero(m_in_max_);
+  cx_.setZero(m_in_max_);
   y_eq_.setZero(m_eq_max_);
   y_in_.setZero(m_in_max_);
   y_box_.setZero(n_);
@@ -223,18 +224,6 @@ void QpSolver::restoreDualFeasibility() {
   }
 }
 
-bool QpSolver::violated(int id, double* scaled) const {
-  const double b = rhs(id);
-  if (!(std::abs(b) < kInf)) {
-    *scaled = 0.0;
-    return false;  // an infinite bound (bounds that make the problem infeasible were rejected before)
-  }
-  const double nn = normalNorm(id);
-  const double v = (b - normalDot(id, x_)) / nn;
-  *scaled = v;
-  return v > settings_.feasibility_tol * std::max(1.0, std::abs(b) / nn);
-}
-
 QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::Ref<const Eigen::VectorXd>& g,
                          const Eigen::Ref<const Eigen::MatrixXd>& A_eq, const Eigen::Ref<const Eigen::VectorXd>& b_eq,
                          const Eigen::Ref<const Eigen::MatrixXd>& C, const Eigen::Ref<const Eigen::VectorXd>& c_lo,
@@ -347,18 +336,30 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
   // ---- main loop of the dual method ----
   const int max_it = settings_.max_iterations > 0 ? settings_.max_iterations : 10 * (n + m_eq + m_in) + 50;
   for (;;) {
-    // Most violated constraint (distance to its hyperplane).
+    // Most violated constraint (distance to its hyperplane, relative for large bounds).
     int p = -1;
     double worst = 0.0;
-    for (int id = m_eq; id < n_ids; ++id) {
-      if (in_active_[id]) continue;
-      const int base = (id - m_eq) & ~1;
-      if (in_active_[m_eq + base + ((id - m_eq) & 1 ? 0 : 1)]) continue;  // the other side is active
-      double v;
-      if (violated(id, &v) && v > worst) {
+    const double ftol = settings_.feasibility_tol;
+    auto consider = [&](int id, double b, double value, double norm, double sign) {
+      if (!(std::abs(b) < kInf)) return;
+      const double v = sign * (b - value) / norm;
+      if (v > worst && v > ftol * std::max(1.0, std::abs(b) / norm)) {
         worst = v;
         p = id;
       }
+    };
+    if (m_in > 0) cx_.head(m_in).noalias() = C * x_;
+    for (int i = 0; i < m_in; ++i) {
+      const int id = m_eq + 2 * i;
+      if (in_active_[id] || in_active_[id + 1]) continue;  // a side is active (or the row is settled)
+      consider(id, c_lo[i], cx_[i], row_norm_[i], 1.0);
+      consider(id + 1, c_up[i], cx_[i], row_norm_[i], -1.0);
+    }
+    for (int j = 0; j < n_box; ++j) {
+      const int id = m_eq + 2 * m_in + 2 * j;
+      if (in_active_[id] || in_active_[id + 1]) continue;
+      consider(id, x_lo[j], x_[j], 1.0, 1.0);
+      consider(id + 1, x_up[j], x_[j], 1.0, -1.0);
     }
     if (p < 0) break;
 

@@ -100,7 +100,6 @@ class QpSolver {
   void recomputePrimalDual();        // x and u from the current factorisation (warm start)
   void restoreDualFeasibility();     // recompute, dropping negative inequality multipliers
   bool isDependent() const;          // from d_ after computeD
-  bool violated(int id, double* scaled_violation) const;
 
   QpSettings settings_;
   int n_ = 0, m_eq_max_ = 0, m_in_max_ = 0;
@@ -122,6 +121,7 @@ class QpSolver {
   Eigen::MatrixXd R_;   // n x n, upper triangular iq x iq block in use
   Eigen::VectorXd d_, z_, r_, u_, x_, tmp_;
   Eigen::VectorXd row_norm_;  // ||C_i||, m_in_max
+  Eigen::VectorXd cx_;        // C x, m_in_max
   Eigen::VectorXd y_eq_, y_in_, y_box_;
   std::vector<int> active_;       // active ids by position (size n)
   std::vector<char> is_eq_;       // per position: equality (not droppable)
