@@ -1,6 +1,7 @@
 #include "model/template_model.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
 namespace centaur::model {
 

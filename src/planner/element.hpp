@@ -1,9 +1,12 @@
 #pragma once
 // Element functions: small smooth vector functions of a few scalar inputs, the building blocks of every
 // constraint and cost of an OCP (partially separable structure, as in LANCELOT/ifopt: derivatives stay small).
-// AdElement<Derived, NI, NO> turns one templated `compute(const S* in, S* out)` into exact values, Jacobians
+// AdElement<Derived, NI, NO, NN> turns one templated `compute(const S* in, S* out)` into exact values, Jacobians
 // (forward AD) and weighted Hessians (forward-over-forward AD) with Eigen's AutoDiffScalar, fixed sizes,
-// no heap allocation.
+// no heap allocation. NN <= NI: only the FIRST NN inputs may appear nonlinearly; the remaining NI - NN inputs
+// must enter linearly and never multiply each other (e.g. forces and accelerations in the inverse dynamics),
+// so their Hessian block is zero and the outer AD level runs over NN directions only. The finite-difference
+// tests of every element check this declaration too.
 #include <unsupported/Eigen/AutoDiff>
 
 #include <Eigen/Core>
@@ -25,13 +28,15 @@ class Element {
   virtual void evalHessian(const double* in, const double* w, double* hess) const = 0;
 };
 
-template <class Derived, int NI, int NO>
+template <class Derived, int NI, int NO, int NN = NI>
 class AdElement : public Element {
+  static_assert(NN >= 1 && NN <= NI, "NN nonlinear inputs must be a prefix of the NI inputs");
+
  public:
   static constexpr int kInputs = NI;
   static constexpr int kOutputs = NO;
   using D1 = Eigen::AutoDiffScalar<Eigen::Matrix<double, NI, 1>>;
-  using D2 = Eigen::AutoDiffScalar<Eigen::Matrix<D1, NI, 1>>;
+  using D2 = Eigen::AutoDiffScalar<Eigen::Matrix<D1, NN, 1>>;
 
   int numInputs() const override { return NI; }
   int numOutputs() const override { return NO; }
@@ -53,16 +58,19 @@ class AdElement : public Element {
     D2 x[NI];
     for (int i = 0; i < NI; ++i) {
       x[i].value() = D1(in[i], NI, i);
-      for (int k = 0; k < NI; ++k) x[i].derivatives()[k] = D1(k == i ? 1.0 : 0.0);
+      for (int k = 0; k < NN; ++k) x[i].derivatives()[k] = D1(k == i ? 1.0 : 0.0);
     }
     D2 y[NO];
     derived().compute(x, y);
     for (int i = 0; i < NI * NI; ++i) hess[i] = 0.0;
     for (int j = 0; j < NO; ++j) {
       if (w[j] == 0.0) continue;
-      for (int a = 0; a < NI; ++a) {
+      for (int a = 0; a < NN; ++a) {
         const auto& da = y[j].derivatives()[a].derivatives();
-        for (int b = 0; b < NI; ++b) hess[a * NI + b] += w[j] * da[b];
+        for (int b = 0; b < NI; ++b) {
+          hess[a * NI + b] += w[j] * da[b];
+          if (b >= NN) hess[b * NI + a] += w[j] * da[b];  // symmetric partner in the (linear, nonlinear) block
+        }
       }
     }
   }

@@ -154,6 +154,7 @@ SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s) {
   app->Options()->SetStringValue("linear_solver", "mumps");
   app->Options()->SetStringValue("hessian_approximation", s.hessian);
   if (s.user_scaling) app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
+  if (s.print_level >= 5) app->Options()->SetStringValue("print_timing_statistics", "yes");
   const auto t0 = std::chrono::steady_clock::now();
   Ipopt::ApplicationReturnStatus st = app->Initialize();
   if (st != Ipopt::Solve_Succeeded) {

@@ -38,7 +38,7 @@ limits:
   velocity: 100.0
   acceleration: 100.0
 target:
-  height: 1.0
+  height: 0.9
   wall_distance: 0.15
 cost:
   base_height: 50.0
@@ -48,6 +48,8 @@ cost:
   acceleration_rate: 1.0e-3
   base_orientation: 0.0
   base_pose: 0.0
+  stance_foot_velocity: 100.0
+  velocity_regularization: 0.0
 solver:
   tol: 1.0e-8
   constr_viol_tol: 1.0e-4
@@ -188,6 +190,8 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   k.get("acceleration_rate", c.cost.acceleration_rate, 0.0, 1e6);
   k.get("base_orientation", c.cost.base_orientation, 0.0, 1e6);
   k.get("base_pose", c.cost.base_pose, 0.0, 1e6);
+  k.get("stance_foot_velocity", c.cost.stance_foot_velocity, 0.0, 1e8);
+  k.get("velocity_regularization", c.cost.velocity_regularization, 0.0, 1e6);
   k.finish();
 
   auto s = r.child("solver");

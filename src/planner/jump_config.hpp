@@ -53,6 +53,10 @@ struct CostConfig {
   double acceleration_rate = 1.0e-3; ///< gamma_nuddot: |nu_dot_k+1 - nu_dot_k|^2, intervals 0..N_s-2
   double base_orientation = 0.0;     ///< |rho - rho_0|^2 on every node (the authors' script: 100)
   double base_pose = 0.0;            ///< |p - p_0|^2 + |rho - rho_0|^2 on nodes N_T+1..N_s (half-squat-jump)
+  // Not in the paper's cost (our additions, documented in docs/planner.md):
+  double stance_foot_velocity = 100.0;  ///< |w_pdot_foot|^2 at every node where the foot is in contact: keeps
+                                        ///< stance feet still BETWEEN shooting nodes (positions are pinned at nodes)
+  double velocity_regularization = 0.0; ///< nu^T nu on every node
 };
 
 struct JumpConfig {
@@ -64,7 +68,7 @@ struct JumpConfig {
   WorkspaceConfig workspace;
   ContactConfig contact;
   LimitsConfig limits;
-  double target_height = 1.0;   ///< [m] squat-jump: waist height (world z) to reach in flight
+  double target_height = 0.9;   ///< [m] squat-jump: waist height (world z) to reach in flight
   double wall_distance = 0.15;  ///< [m] half-squat-jump: wall (foot-point plane) behind the rear wheel centres
   CostConfig cost;
   SolverSettings solver;

@@ -122,7 +122,6 @@ Primitive JumpProblem::toPrimitive(const SolveResult& result, double sample_dt) 
   // Metadata.
   out.config_yaml = toYamlString(cfg_.effective);
   out.strings["model_preset"] = P.preset;
-  out.strings["foot_order"] = "FL,FR,RL,RR";
   out.strings["foot_point"] = "wheel centre";
   out.strings["friction_model"] = cfg_.contact.friction;
   out.strings["config_source"] = cfg_.source;

@@ -154,7 +154,6 @@ void JumpProblem::buildContacts() {
     while (k < N_) {
       const int s = schedule_[i][k];
       if (s < 0) {
-        ocp_.setBounds("F", k, constant(12, -cfg_.contact.force_max), constant(12, cfg_.contact.force_max));
         Eigen::VectorXd lo = ocp_.lowerBounds().segment(ocp_.index("F", k, 0), 12);
         Eigen::VectorXd hi = ocp_.upperBounds().segment(ocp_.index("F", k, 0), 12);
         lo.segment<3>(3 * i).setZero();
@@ -201,6 +200,12 @@ void JumpProblem::buildContacts() {
         ocp_.addTerm(ocp_.addConstraint("contact_velocity", k, constant(3, 0.0), constant(3, 0.0)), ve, footVelIn(k, i));
       }
       for (int n = k; n <= e + 1; ++n) pinned[n] = 1;
+      if (cfg_.cost.stance_foot_velocity > 0) {
+        auto ve = std::make_shared<FootVelocitySquared>(P, i);
+        for (int n = (from_start ? 1 : k + 1); n <= e + 1; ++n) {
+          ocp_.addCost("stance_foot_velocity", ve, footVelIn(n, i), cfg_.cost.stance_foot_velocity);
+        }
+      }
       k = e + 1;
     }
     // Swing nodes stay on the free side of every surface.
@@ -238,6 +243,10 @@ void JumpProblem::buildCosts() {
     auto e = std::make_shared<SquaredDifference<kNv>>();
     for (int k = 0; k <= N_ - 2; ++k)
       ocp_.addCost("acceleration_rate", e, cat({idx("nu_dot", k, 0, kNv), idx("nu_dot", k + 1, 0, kNv)}), C.acceleration_rate);
+  }
+  if (C.velocity_regularization > 0) {
+    auto e = std::make_shared<SquaredError<kNv>>(Eigen::Matrix<double, kNv, 1>::Zero(), "velocity_regularization");
+    for (int k = 1; k <= N_; ++k) ocp_.addCost("velocity_regularization", e, idx("nu", k, 0, kNv), C.velocity_regularization);
   }
   const Eigen::Vector4d rho0(1, 0, 0, 0);
   if (C.base_orientation > 0) {

@@ -1,5 +1,7 @@
 #include "planner/template_elements.hpp"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 
 namespace centaur::planner {

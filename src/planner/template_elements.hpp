@@ -64,7 +64,7 @@ struct QuaternionStep : AdElement<QuaternionStep, 15, 4> {
 // Inverse dynamics (eq. 4), one element per body; outputs are scaled by 1 / scale (e.g. m g) for conditioning.
 
 /// Inputs: rho (4), omega (3), pddot_u (3), omega_dot (3). Outputs: 6 unactuated rows.
-struct WaistDynamicsElement : AdElement<WaistDynamicsElement, 13, 6> {
+struct WaistDynamicsElement : AdElement<WaistDynamicsElement, 13, 6, 7> {
   WaistDynamicsElement(const TemplateParams& p, double s) : P(p), inv_scale(1.0 / s) {}
   const char* name() const override { return "dynamics_waist"; }
   template <class S>
@@ -78,7 +78,7 @@ struct WaistDynamicsElement : AdElement<WaistDynamicsElement, 13, 6> {
 
 /// Inputs: rho (4), omega (3), q_ci (3), qd_ci (3), pddot_u (3), omega_dot (3), qdd_ci (3), F_i (3).
 /// Outputs: 6 unactuated rows, then the 3 actuated rows of foot i.
-struct FootDynamicsElement : AdElement<FootDynamicsElement, 25, 9> {
+struct FootDynamicsElement : AdElement<FootDynamicsElement, 25, 9, 13> {
   FootDynamicsElement(const TemplateParams& p, int foot, double s) : P(p), i(foot), inv_scale(1.0 / s) {}
   const char* name() const override { return "dynamics_foot"; }
   template <class S>
@@ -151,11 +151,24 @@ struct FootVelocityElement : AdElement<FootVelocityElement, 16, 3> {
   int i;
 };
 
+/// Inputs: as FootVelocityElement. Output: |foot velocity|^2 (a cost).
+struct FootVelocitySquared : AdElement<FootVelocitySquared, 16, 1> {
+  FootVelocitySquared(const TemplateParams& p, int foot) : P(p), i(foot) {}
+  const char* name() const override { return "stance_foot_velocity"; }
+  template <class S>
+  void compute(const S* in, S* out) const {
+    const model::Vec3<S> v = model::footVelocity(P, i, in, in + 4, in + 7, in + 10, in + 13);
+    out[0] = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  }
+  TemplateParams P;
+  int i;
+};
+
 // ---------------------------------------------------------------------------------------------
 // Friction (eq. friction_conic). The surface normal n points out of the surface, towards the robot.
 
 /// Linearized (inner) pyramid, 5 rows, all >= 0: mu' Fn -+ F.t1, mu' Fn -+ F.t2 (mu' = mu / sqrt(2)), Fn - F_thr.
-struct FrictionPyramidElement : AdElement<FrictionPyramidElement, 3, 5> {
+struct FrictionPyramidElement : AdElement<FrictionPyramidElement, 3, 5, 1> {
   FrictionPyramidElement(const Eigen::Vector3d& normal, double mu, double threshold, double scale);
   const char* name() const override { return "friction_pyramid"; }
   template <class S>

@@ -1,0 +1,157 @@
+// ctest-labels: unit
+// Every constraint and cost derivative is exact: element Jacobians and weighted Hessians, and the assembled
+// NLP gradient, constraint Jacobian and Lagrangian Hessian, against central finite differences.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include "model/template_params.hpp"
+#include "planner/jump_problem.hpp"
+#include "planner/template_elements.hpp"
+
+using namespace centaur;
+using namespace centaur::planner;
+
+namespace {
+
+double relErr(double a, double b) { return std::abs(a - b) / std::max(1.0, std::max(std::abs(a), std::abs(b))); }
+
+// Jacobian of e at x by central differences of eval().
+std::vector<double> fdJacobian(const Element& e, std::vector<double> x, double h) {
+  const int ni = e.numInputs(), no = e.numOutputs();
+  std::vector<double> J(no * ni), fp(no), fm(no);
+  for (int i = 0; i < ni; ++i) {
+    const double xi = x[i];
+    x[i] = xi + h;
+    e.eval(x.data(), fp.data());
+    x[i] = xi - h;
+    e.eval(x.data(), fm.data());
+    x[i] = xi;
+    for (int j = 0; j < no; ++j) J[j * ni + i] = (fp[j] - fm[j]) / (2 * h);
+  }
+  return J;
+}
+
+// Hessian of w^T e at x by central differences of the exact (AD) gradient w^T J.
+std::vector<double> fdHessian(const Element& e, std::vector<double> x, const std::vector<double>& w, double h) {
+  const int ni = e.numInputs(), no = e.numOutputs();
+  std::vector<double> H(ni * ni), Jp(no * ni), Jm(no * ni), f(no);
+  for (int i = 0; i < ni; ++i) {
+    const double xi = x[i];
+    x[i] = xi + h;
+    e.evalJacobian(x.data(), f.data(), Jp.data());
+    x[i] = xi - h;
+    e.evalJacobian(x.data(), f.data(), Jm.data());
+    x[i] = xi;
+    for (int b = 0; b < ni; ++b) {
+      double d = 0.0;
+      for (int j = 0; j < no; ++j) d += w[j] * (Jp[j * ni + b] - Jm[j * ni + b]);
+      H[i * ni + b] = d / (2 * h);
+    }
+  }
+  return H;
+}
+
+void checkElement(const Element& e, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  const int ni = e.numInputs(), no = e.numOutputs();
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<double> x(ni), w(no), f(no), J(no * ni), H(ni * ni);
+    for (auto& v : x) v = U(rng);
+    for (auto& v : w) v = U(rng);
+    e.evalJacobian(x.data(), f.data(), J.data());
+    std::vector<double> f2(no);
+    e.eval(x.data(), f2.data());
+    for (int j = 0; j < no; ++j) EXPECT_DOUBLE_EQ(f[j], f2[j]) << e.name();
+    const auto Jfd = fdJacobian(e, x, 1e-6);
+    for (int k = 0; k < no * ni; ++k) EXPECT_LT(relErr(J[k], Jfd[k]), 1e-6) << e.name() << " J[" << k << "]";
+    e.evalHessian(x.data(), w.data(), H.data());
+    const auto Hfd = fdHessian(e, x, w, 1e-6);
+    for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H[k], Hfd[k]), 1e-6) << e.name() << " H[" << k << "]";
+    for (int a = 0; a < ni; ++a)
+      for (int b = 0; b < ni; ++b) EXPECT_LT(relErr(H[a * ni + b], H[b * ni + a]), 1e-12) << e.name();
+  }
+}
+
+}  // namespace
+
+TEST(Derivatives, EveryElementMatchesCentralDifferences) {
+  for (const auto& preset : model::templatePresetNames()) {
+    const model::TemplateParams P = model::templatePreset(preset);
+    checkElement(PositionStep(), 1);
+    checkElement(VelocityStep(), 2);
+    checkElement(QuaternionStep(), 3);
+    checkElement(WaistDynamicsElement(P, 1.0), 4);
+    for (int i = 0; i < 4; ++i) {
+      checkElement(FootDynamicsElement(P, i, 1.0), 10 + i);
+      checkElement(FootSurfaceElement(P, i, Eigen::Vector3d(0.2, 0.1, 0.97).normalized(), -0.05), 20 + i);
+      checkElement(FootPointElement(P, i, Eigen::Vector3d(0.3, -0.2, 0.1)), 30 + i);
+      checkElement(FootDisplacementElement(P, i), 40 + i);
+      checkElement(FootVelocityElement(P, i), 50 + i);
+      checkElement(FootVelocitySquared(P, i), 60 + i);
+    }
+  }
+  checkElement(FrictionPyramidElement(Eigen::Vector3d::UnitZ(), 0.7, 5.0, 10.0), 70);
+  checkElement(FrictionPyramidElement(Eigen::Vector3d::UnitX(), 1.0, 0.0, 10.0), 71);
+  checkElement(FrictionConeElement(Eigen::Vector3d(0.1, 0.2, 1.0), 0.5, 1.0, 10.0), 72);
+  checkElement(SquaredError<4>(Eigen::Vector4d(1, 0, 0, 0)), 73);
+  checkElement(SquaredDifference<3>(), 74);
+}
+
+TEST(Derivatives, AssembledNlpMatchesCentralDifferences) {
+  // A short jump OCP (both primitives), evaluated at a perturbed initial guess.
+  for (const std::string primitive : {"squat-jump", "half-squat-jump"}) {
+    JumpConfig cfg = loadJumpConfig(primitive, "", {"horizon.intervals=6", "horizon.takeoff=1", "horizon.landing=4"});
+    cfg.cost.base_orientation = 3.0;
+    cfg.cost.velocity_regularization = 0.5;
+    const JumpProblem problem(cfg);
+    const Ocp& ocp = problem.ocp();
+    const int n = ocp.numVariables(), m = ocp.numConstraints();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    Eigen::VectorXd z = ocp.guess();
+    for (int i = 0; i < n; ++i) z[i] += 0.05 * U(rng) * ocp.scale()[i];
+    Eigen::VectorXd lambda(m);
+    for (int j = 0; j < m; ++j) lambda[j] = U(rng);
+    const double sigma = 0.7, h = 1e-6;
+
+    Eigen::VectorXd grad(n);
+    ocp.gradient(z.data(), grad.data());
+    std::vector<double> jac(ocp.jacobianNonzeros()), hess(ocp.hessianNonzeros());
+    ocp.jacobian(z.data(), jac.data());
+    ocp.hessian(z.data(), sigma, lambda.data(), hess.data());
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, n), H = Eigen::MatrixXd::Zero(n, n);
+    for (std::size_t k = 0; k < jac.size(); ++k) J(ocp.jacobianRows()[k], ocp.jacobianCols()[k]) += jac[k];
+    for (std::size_t k = 0; k < hess.size(); ++k) {
+      const int r = ocp.hessianRows()[k], c = ocp.hessianCols()[k];
+      ASSERT_GE(r, c);
+      H(r, c) += hess[k];
+      if (r != c) H(c, r) += hess[k];
+    }
+    // Lagrangian gradient for the Hessian check: sigma grad f + J^T lambda.
+    auto lagGrad = [&](const Eigen::VectorXd& zz) {
+      Eigen::VectorXd g(n);
+      ocp.gradient(zz.data(), g.data());
+      std::vector<double> jv(ocp.jacobianNonzeros());
+      ocp.jacobian(zz.data(), jv.data());
+      Eigen::VectorXd out = sigma * g;
+      for (std::size_t k = 0; k < jv.size(); ++k) out[ocp.jacobianCols()[k]] += jv[k] * lambda[ocp.jacobianRows()[k]];
+      return out;
+    };
+    Eigen::VectorXd gp(m), gm(m);
+    for (int i = 0; i < n; ++i) {
+      Eigen::VectorXd zp = z, zm = z;
+      zp[i] += h;
+      zm[i] -= h;
+      EXPECT_LT(relErr(grad[i], (ocp.objective(zp.data()) - ocp.objective(zm.data())) / (2 * h)), 1e-6) << primitive << " grad " << i;
+      ocp.constraints(zp.data(), gp.data());
+      ocp.constraints(zm.data(), gm.data());
+      const Eigen::VectorXd col = (gp - gm) / (2 * h);
+      for (int j = 0; j < m; ++j) ASSERT_LT(relErr(J(j, i), col[j]), 1e-6) << primitive << " J(" << j << "," << i << ")";
+      const Eigen::VectorXd hcol = (lagGrad(zp) - lagGrad(zm)) / (2 * h);
+      for (int r = 0; r < n; ++r) ASSERT_LT(relErr(H(r, i), hcol[r]), 1e-6) << primitive << " H(" << r << "," << i << ")";
+    }
+  }
+}
