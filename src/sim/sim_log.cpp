@@ -110,9 +110,16 @@ bool writeDataset(hid_t file, const char* name, const std::vector<double>& data,
 void SimLog::writeHdf5(const std::string& path, const std::string& config_yaml, const std::string& scenario) const {
   ensureParentDirectory(path);
   const std::string tmp = temporaryPathFor(path);
+  // Silence HDF5's own error printing while writing (errors are reported as RuntimeError); restored below.
+  H5E_auto2_t old_func = nullptr;
+  void* old_data = nullptr;
+  H5Eget_auto2(H5E_DEFAULT, &old_func, &old_data);
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   hid_t file = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file < 0) throw RuntimeError("cannot create " + path);
+  if (file < 0) {
+    H5Eset_auto2(H5E_DEFAULT, old_func, old_data);
+    throw RuntimeError("cannot create " + path);
+  }
   const hsize_t N = t_.size(), n = n_, nc = nc_;
   bool ok = true;
   ok &= writeDataset(file, "t", t_, {N}, "s", "robot time of the sample (start of the control period)");
@@ -157,6 +164,7 @@ void SimLog::writeHdf5(const std::string& path, const std::string& config_yaml, 
   setStringAttribute(file, "format", "centaur-sim-log 1");
   setStringAttribute(file, "units", "SI: s, m, rad, N, N m; quaternions w,x,y,z; see each dataset's `units`");
   ok &= H5Fclose(file) >= 0;
+  H5Eset_auto2(H5E_DEFAULT, old_func, old_data);
   if (!ok) {
     removeFileIfExists(tmp);
     throw RuntimeError("cannot write the HDF5 log " + path);
