@@ -9,6 +9,7 @@ namespace centaur {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNullRowTol = 1e-9;  // relative norm of a constraint row after projection on null(E)
 }
 
 void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings) {
@@ -55,7 +56,6 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   H_.setZero(n, n);
   g_.setZero(n);
   E_.setZero(std::max(total_rows, 1), n);
-  e_.setZero(std::max(total_rows, 1));
   As_.setZero(max_term_rows, n);
   WAs_.setZero(max_term_rows, n);
   Wsel_.setZero(max_term_rows, max_term_rows);
@@ -69,10 +69,26 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   solvers_.clear();
   solvers_.resize(levels);  // default-constructed in place, then sized
   level_x_.assign(levels, Eigen::VectorXd::Zero(n));
+  level_rank_.assign(levels, 0);
+  qr_.clear();
+  qr_.reserve(levels);
+  const int m_rows = m_in_ + (has_box_ ? n : 0);  // reduced levels: constraint rows and box rows
   for (int k = 0; k < levels; ++k) {
-    solvers_[k].resize(n, level_offset_[k], m_in_);
+    // level 0: the full problem with box bounds; levels >= 1: the reduced problem (<= n variables, rows only)
+    solvers_[k].resize(n, 0, k == 0 ? m_in_ : m_rows);
     solvers_[k].settings() = settings;
+    qr_.emplace_back(n, std::max(level_offset_[k], 1));
+    qr_.back().setThreshold(rank_threshold_);
   }
+  Z_.setZero(n, n);
+  HZ_.setZero(n, n);
+  Hy_.setZero(n, n);
+  Cy_.setZero(std::max(m_rows, 1), n);
+  gy_.setZero(n);
+  ylo_.setZero(std::max(m_rows, 1));
+  yup_.setZero(std::max(m_rows, 1));
+  work_.setZero(n);
+  tmp_.setZero(std::max(m_in_, n));
   failed_level_ = -1;
 }
 
@@ -139,26 +155,93 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
   const int levels = numLevels();
   for (int k = 0; k < levels; ++k) {
     assembleLevel(k);
-    const int m_eq = level_offset_[k];
     QpSolver& qp = solvers_[k];
-    const QpStatus status =
-        has_box_ ? qp.solve(H_, g_, E_.topRows(m_eq), e_.head(m_eq), C_, c_lo_, c_up_, x_lo_, x_up_)
-                 : qp.solve(H_, g_, E_.topRows(m_eq), e_.head(m_eq), C_, c_lo_, c_up_, none, none);
+    QpStatus status = QpStatus::kOptimal;
+    if (k == 0) {
+      status = has_box_ ? qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, x_lo_, x_up_)
+                        : qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, none, none);
+      if (status == QpStatus::kOptimal) level_x_[k] = qp.x();
+    } else {
+      status = solveReduced(k);
+    }
     if (status != QpStatus::kOptimal) {
       failed_level_ = k;
       if (k > 0) x = level_x_[k - 1];
       return status;
     }
-    level_x_[k] = qp.x();
-    // Clip to the box (a change within the QP tolerance) so that the equality rows handed to the next level
-    // are met by a point that satisfies the bounds exactly: otherwise a level whose feasible set is a single
-    // point on the boundary could be infeasible by 1e-11.
+    // Clip to the box (a change within the QP tolerance) so that the returned x and the point the next level
+    // starts from satisfy the bounds (joint limits) exactly.
     if (has_box_) level_x_[k] = level_x_[k].cwiseMax(x_lo_).cwiseMin(x_up_);
-    // Keep this level's optimal residual for the levels below.
-    const int m = level_offset_[k + 1] - m_eq;
-    e_.segment(m_eq, m).noalias() = E_.middleRows(m_eq, m) * level_x_[k];
   }
-  x = level_x_[levels - 1];  // clipped: satisfies the box bounds (joint limits) exactly
+  x = level_x_[levels - 1];
+  return QpStatus::kOptimal;
+}
+
+QpStatus HqpSolver::solveReduced(int k) {
+  const int n = n_;
+  const int m = level_offset_[k];
+  const Eigen::VectorXd& xp = level_x_[k - 1];
+  // Null space of the rows of the levels above: E' P = Q R, Z = Q(:, rank:n).
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr = qr_[k];
+  qr.compute(E_.topRows(m).transpose());
+  const int rank = static_cast<int>(qr.rank());
+  level_rank_[k] = rank;
+  const int nz = n - rank;
+  if (nz == 0) {  // the levels above fix x completely
+    level_x_[k] = xp;
+    return QpStatus::kOptimal;
+  }
+  auto Z = Z_.leftCols(nz);
+  Z.setZero();
+  Z.bottomRows(nz).setIdentity();
+  const int reflectors = static_cast<int>(qr.hCoeffs().size());
+  for (int i = reflectors - 1; i >= 0; --i) {
+    auto rows = Z.bottomRows(n - i);
+    rows.applyHouseholderOnTheLeft(qr.matrixQR().col(i).tail(n - i - 1), qr.hCoeffs()(i), work_.data());
+  }
+  // Reduced cost: 1/2 y' Z'HZ y + (Z'(H xp + g))' y.
+  auto HZ = HZ_.leftCols(nz);
+  HZ.noalias() = H_ * Z;
+  auto Hy = Hy_.topLeftCorner(nz, nz);
+  Hy.noalias() = Z.transpose() * HZ;
+  auto t = tmp_.head(n);
+  t = g_;
+  t.noalias() += H_ * xp;
+  auto gy = gy_.head(nz);
+  gy.noalias() = Z.transpose() * t;
+  // Rows: c_lo - C xp <= C Z y <= c_up - C xp ;  x_lo - xp <= Z y <= x_up - xp.
+  int rows = 0;
+  if (m_in_ > 0) {
+    Cy_.topLeftCorner(m_in_, nz).noalias() = C_ * Z;
+    auto cxp = tmp_.head(m_in_);
+    cxp.noalias() = C_ * xp;
+    ylo_.head(m_in_) = c_lo_ - cxp;
+    yup_.head(m_in_) = c_up_ - cxp;
+    rows = m_in_;
+  }
+  if (has_box_) {
+    Cy_.block(rows, 0, n, nz) = Z;
+    ylo_.segment(rows, n) = x_lo_ - xp;
+    yup_.segment(rows, n) = x_up_ - xp;
+    rows += n;
+  }
+  // A row whose projection on the null space is negligible is fixed by the levels above (and met by xp):
+  // it is dropped, since rounding noise in a near-zero row would read as a large normalised violation.
+  for (int i = 0; i < rows; ++i) {
+    const double original = i < m_in_ ? C_.row(i).norm() : 1.0;
+    if (Cy_.row(i).head(nz).norm() <= kNullRowTol * original) {
+      Cy_.row(i).head(nz).setZero();
+      ylo_[i] = -kInf;
+      yup_[i] = kInf;
+    }
+  }
+  const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);
+  QpSolver& qp = solvers_[k];
+  const QpStatus status = qp.solve(Hy, gy, Cy_.topLeftCorner(0, nz), ylo_.head(0), Cy_.topLeftCorner(rows, nz),
+                                   ylo_.head(rows), yup_.head(rows), none, none);
+  if (status != QpStatus::kOptimal) return status;
+  level_x_[k] = xp;
+  level_x_[k].noalias() += Z * qp.x();
   return QpStatus::kOptimal;
 }
 

@@ -10,10 +10,17 @@
 // every level's Hessian positive definite. Each level has its own QpSolver (warm-started from the previous
 // tick's active set). The solution of the last level is returned.
 //
+// The equalities of level k are eliminated (null-space method): with E the stacked rows of the levels above,
+// a rank-revealing QR E' P = Q R gives an orthonormal basis Z of null(E) (the last n - rank columns of Q),
+// and x = x_{k-1}* + Z y. Level k is then a QP in y (n - rank variables) with only inequality rows
+// (the constraint rows times Z and the box bounds as rows Z), which is much smaller than the full problem
+// and makes redundant rows of the levels above harmless (they do not increase the rank).
+//
 // Lifecycle: configure(stack, n) checks the stack and allocates everything; then every tick
 //   update()  -> each distinct task / constraint recomputes its A, b / bounds (once, even if shared)
 //   solve(x)  -> no allocation, no throw, returns a status the caller must check.
 #include <Eigen/Core>
+#include <Eigen/QR>
 
 #include <vector>
 
@@ -45,6 +52,8 @@ class HqpSolver {
   int failedLevel() const { return failed_level_; }
   const Stack& stack() const { return stack_; }
   QpSolver& levelSolver(int k) { return solvers_[k]; }
+  /// Rank of the rows of the levels above level k in the last solve (0 for level 0).
+  int levelRank(int k) const { return level_rank_[k]; }
   /// Solution of level k in the last solve (levels up to the failed one).
   const Eigen::VectorXd& levelSolution(int k) const { return level_x_[k]; }
 
@@ -53,6 +62,7 @@ class HqpSolver {
 
  private:
   void assembleLevel(int k);  // H_, g_ and the level's rows in E_
+  QpStatus solveReduced(int k);  // level k >= 1 in the null space of the levels above
 
   Stack stack_;
   int n_ = 0;
@@ -64,7 +74,13 @@ class HqpSolver {
   std::vector<QpSolver> solvers_;
   std::vector<Eigen::VectorXd> level_x_;
   Eigen::MatrixXd H_, E_, As_, WAs_, Wsel_, C_;
-  Eigen::VectorXd g_, e_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
+  Eigen::VectorXd g_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
+  // null-space reduction (levels >= 1)
+  std::vector<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>> qr_;
+  Eigen::MatrixXd Z_, HZ_, Hy_, Cy_;
+  Eigen::VectorXd gy_, ylo_, yup_, work_, tmp_;
+  std::vector<int> level_rank_;
+  double rank_threshold_ = 1e-10;
   int failed_level_ = -1;
 };
 

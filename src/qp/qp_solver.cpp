@@ -59,11 +59,11 @@ const char* toString(QpStatus status) {
 }
 
 void QpSolver::resize(int n, int m_eq_max, int m_in_max) {
-  n_ = std::max(n, 0);
+  n_max_ = std::max(n, 0);
+  n_ = n_max_;
   m_eq_max_ = std::max(m_eq_max, 0);
   m_in_max_ = std::max(m_in_max, 0);
-  llt_ = Eigen::LLT<Eigen::MatrixXd>(n_);
-  llt_.compute(Eigen::MatrixXd::Identity(n_, n_));  // sizes the internal matrix once
+  L_.setZero(n_, n_);
   J_.setZero(n_, n_);
   R_.setZero(n_, n_);
   d_.setZero(n_);
@@ -87,10 +87,10 @@ void QpSolver::resize(int n, int m_eq_max, int m_in_max) {
 }
 
 double QpSolver::normalDot(int id, const Eigen::VectorXd& v) const {
-  if (id < m_eq_) return A_eq_->row(id).dot(v);
+  if (id < m_eq_) return A_eq_->row(id).dot(v.head(n_));
   id -= m_eq_;
   if (id < 2 * m_in_) {
-    const double d = C_->row(id / 2).dot(v);
+    const double d = C_->row(id / 2).dot(v.head(n_));
     return (id % 2) ? -d : d;
   }
   id -= 2 * m_in_;
@@ -115,33 +115,33 @@ double QpSolver::normalNorm(int id) const {
 void QpSolver::computeD(int id) {
   if (id < m_eq_) {
     tmp_.head(n_) = A_eq_->row(id).transpose();
-    d_.noalias() = J_.transpose() * tmp_.head(n_);
+    d_.head(n_).noalias() = J_.topLeftCorner(n_, n_).transpose() * tmp_.head(n_);
     return;
   }
   int k = id - m_eq_;
   if (k < 2 * m_in_) {
     tmp_.head(n_) = C_->row(k / 2).transpose();
-    d_.noalias() = J_.transpose() * tmp_.head(n_);
-    if (k % 2) d_ = -d_;
+    d_.head(n_).noalias() = J_.topLeftCorner(n_, n_).transpose() * tmp_.head(n_);
+    if (k % 2) d_.head(n_) = -d_.head(n_);
     return;
   }
   k -= 2 * m_in_;
-  d_ = J_.row(k / 2).transpose();
-  if (k % 2) d_ = -d_;
+  d_.head(n_) = J_.row(k / 2).head(n_).transpose();
+  if (k % 2) d_.head(n_) = -d_.head(n_);
 }
 
 bool QpSolver::isDependent() const {
   if (iq_ >= n_) return true;
-  const double tail = d_.tail(n_ - iq_).norm();
-  return !(tail > settings_.dependency_tol * d_.norm());
+  const double tail = d_.segment(iq_, n_ - iq_).norm();
+  return !(tail > settings_.dependency_tol * d_.head(n_).norm());
 }
 
 void QpSolver::computeStep() {
   const int k = n_ - iq_;
   if (k > 0) {
-    z_.noalias() = J_.rightCols(k) * d_.tail(k);
+    z_.head(n_).noalias() = J_.block(0, iq_, n_, k) * d_.segment(iq_, k);
   } else {
-    z_.setZero();
+    z_.head(n_).setZero();
   }
   if (iq_ > 0) {
     auto r = r_.head(iq_);
@@ -197,10 +197,10 @@ void QpSolver::recomputePrimalDual() {
   auto y1 = tmp_.head(iq_);
   for (int k = 0; k < iq_; ++k) y1[k] = rhs(active_[k]);
   if (iq_ > 0) R_.topLeftCorner(iq_, iq_).transpose().triangularView<Eigen::Lower>().solveInPlace(y1);
-  d_.noalias() = J_.transpose() * (*g_);
+  d_.head(n_).noalias() = J_.topLeftCorner(n_, n_).transpose() * (*g_);
   z_.head(iq_) = y1;
-  z_.tail(n_ - iq_) = -d_.tail(n_ - iq_);
-  x_.noalias() = J_ * z_;
+  z_.segment(iq_, n_ - iq_) = -d_.segment(iq_, n_ - iq_);
+  x_.head(n_).noalias() = J_.topLeftCorner(n_, n_) * z_.head(n_);
   if (iq_ > 0) {
     auto u = u_.head(iq_);
     u = y1 + d_.head(iq_);
@@ -233,11 +233,11 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
   iq_ = 0;
   objective_ = kInf;
   // ---- validate ----
-  const int n = n_;
+  const int n = static_cast<int>(H.rows());
   const int m_eq = static_cast<int>(A_eq.rows());
   const int m_in = static_cast<int>(C.rows());
   const bool box = x_lo.size() > 0 || x_up.size() > 0;
-  if (H.rows() != n || H.cols() != n || g.size() != n || m_eq > m_eq_max_ || (m_eq > 0 && A_eq.cols() != n) ||
+  if (n > n_max_ || H.cols() != n || g.size() != n || m_eq > m_eq_max_ || (m_eq > 0 && A_eq.cols() != n) ||
       b_eq.size() != m_eq || m_in > m_in_max_ || (m_in > 0 && C.cols() != n) || c_lo.size() != m_in ||
       c_up.size() != m_in || (box && (x_lo.size() != n || x_up.size() != n))) {
     n_prev_ = 0;
@@ -248,6 +248,7 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
     n_prev_ = 0;
     return status_ = QpStatus::kInvalidInput;
   }
+  n_ = n;
   m_eq_ = m_eq;
   m_in_ = m_in;
   has_box_ = box;
@@ -275,14 +276,17 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
     if (x_lo[j] > x_up[j] || x_lo[j] == kInf || x_up[j] == -kInf) return status_ = QpStatus::kInfeasible;
 
   // ---- factorise H = L L', J = L^-T ----
-  llt_.compute(H);
-  if (llt_.info() != Eigen::Success) {
+  Eigen::Ref<Eigen::MatrixXd> L = L_.topLeftCorner(n, n);
+  L = H;
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(L);  // in place: no allocation
+  if (llt.info() != Eigen::Success) {
     n_prev_ = 0;
     return status_ = QpStatus::kNotPositiveDefinite;
   }
-  J_.setIdentity();
-  llt_.matrixU().solveInPlace(J_);
-  R_.setZero();
+  Eigen::Ref<Eigen::MatrixXd> J = J_.topLeftCorner(n, n);
+  J.setIdentity();
+  llt.matrixU().solveInPlace(J);
+  R_.topLeftCorner(n, n).setZero();
 
   // ---- equalities: A_eq rows, C rows with c_lo == c_up, box with x_lo == x_up ----
   auto addEquality = [&](int id) {
@@ -348,7 +352,7 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
         p = id;
       }
     };
-    if (m_in > 0) cx_.head(m_in).noalias() = C * x_;
+    if (m_in > 0) cx_.head(m_in).noalias() = C * x_.head(n);
     for (int i = 0; i < m_in; ++i) {
       const int id = m_eq + 2 * i;
       if (in_active_[id] || in_active_[id + 1]) continue;  // a side is active (or the row is settled)
@@ -384,7 +388,7 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
       double t2 = kInf;
       if (!dependent) {
         const double s = rhs(p) - normalDot(p, x_);
-        t2 = std::max(0.0, s) / d_.tail(n_ - iq_).squaredNorm();
+        t2 = std::max(0.0, s) / d_.segment(iq_, n_ - iq_).squaredNorm();
       }
       const double t = std::min(t1, t2);
       if (t == kInf) {
@@ -403,7 +407,7 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
         dropFromActiveSet(l);
         continue;
       }
-      x_ += t * z_;
+      x_.head(n) += t * z_.head(n);
       u_.head(iq_) -= t * r_.head(iq_);
       u_plus += t;
       if (t2 <= t1) {
@@ -437,8 +441,8 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
   prev_m_eq_ = m_eq;
   prev_m_in_ = m_in;
   prev_box_ = box;
-  tmp_.head(n).noalias() = H * x_;
-  objective_ = 0.5 * x_.dot(tmp_.head(n)) + g.dot(x_);
+  tmp_.head(n).noalias() = H * x_.head(n);
+  objective_ = 0.5 * x_.head(n).dot(tmp_.head(n)) + g.dot(x_.head(n));
   return status_ = QpStatus::kOptimal;
 }
 

@@ -58,14 +58,14 @@ class QpSolver {
   QpSolver() = default;
   QpSolver(int n, int m_eq_max, int m_in_max) { resize(n, m_eq_max, m_in_max); }
 
-  /// Allocate for n variables and at most m_eq_max equality / m_in_max inequality rows. Forgets the warm start.
+  /// Allocate for at most n variables, m_eq_max equality and m_in_max inequality rows. Forgets the warm start.
   void resize(int n, int m_eq_max, int m_in_max);
   QpSettings& settings() { return settings_; }
   const QpSettings& settings() const { return settings_; }
   /// Forget the previous active set: the next solve is cold.
   void resetWarmStart() { n_prev_ = 0; }
 
-  /// Solve. Sizes: H n x n (only the lower triangle is read), g n, A_eq m_eq x n (m_eq <= m_eq_max), b_eq m_eq,
+  /// Solve. Sizes: H n x n (n <= the n of resize(); symmetric, its lower triangle is factorised), g n, A_eq m_eq x n (m_eq <= m_eq_max), b_eq m_eq,
   /// C m_in x n, c_lo/c_up m_in, x_lo/x_up n or size 0 (no box bounds). Never allocates, never throws.
   [[nodiscard]] QpStatus solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::Ref<const Eigen::VectorXd>& g,
                                const Eigen::Ref<const Eigen::MatrixXd>& A_eq,
@@ -78,14 +78,15 @@ class QpSolver {
 
   // ---- results of the last solve (valid when it returned kOptimal) ----
   QpStatus status() const { return status_; }
-  const Eigen::VectorXd& x() const { return x_; }  ///< n
+  Eigen::VectorBlock<const Eigen::VectorXd> x() const { return x_.head(n_); }  ///< n
   auto yEq() const { return y_eq_.head(m_eq_); }   ///< m_eq
   auto yIneq() const { return y_in_.head(m_in_); } ///< m_in
-  const Eigen::VectorXd& yBox() const { return y_box_; }  ///< n (zeros without box bounds)
+  Eigen::VectorBlock<const Eigen::VectorXd> yBox() const { return y_box_.head(n_); }  ///< n (0 without box)
   double objective() const { return objective_; }  ///< 1/2 x'Hx + g'x
   int iterations() const { return iterations_; }   ///< active-set changes in the last solve
   int numActive() const { return iq_; }            ///< size of the final active set (incl. equalities)
-  int numVariables() const { return n_; }
+  int numVariables() const { return n_; }  ///< n of the last solve
+  int capacity() const { return n_max_; }
 
  private:
   // A constraint in the form n'x >= b (inequality) or n'x = b (equality). Ids: [0, m_eq) equality rows,
@@ -102,7 +103,7 @@ class QpSolver {
   bool isDependent() const;          // from d_ after computeD
 
   QpSettings settings_;
-  int n_ = 0, m_eq_max_ = 0, m_in_max_ = 0;
+  int n_max_ = 0, n_ = 0, m_eq_max_ = 0, m_in_max_ = 0;
   int m_eq_ = 0, m_in_ = 0;
   bool has_box_ = false;
 
@@ -116,7 +117,7 @@ class QpSolver {
   const Eigen::Ref<const Eigen::VectorXd>* x_up_ = nullptr;
   const Eigen::Ref<const Eigen::VectorXd>* g_ = nullptr;
 
-  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::MatrixXd L_;   // n x n, Cholesky factor (in place)
   Eigen::MatrixXd J_;   // n x n, J = L^-T Q
   Eigen::MatrixXd R_;   // n x n, upper triangular iq x iq block in use
   Eigen::VectorXd d_, z_, r_, u_, x_, tmp_;

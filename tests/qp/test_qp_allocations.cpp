@@ -144,7 +144,8 @@ TEST(QpAllocations, HqpUpdateAndSolveNeverAllocate) {
     if (k == 500) hqp.levelSolver(1).resetWarmStart();
     pos->setJointPositions(arm.q);
     hqp.update();
-    if (hqp.solve(qd) == QpStatus::kOptimal) ++ok;
+    const QpStatus st = hqp.solve(qd);
+    if (st == QpStatus::kOptimal) ++ok;
     arm.q += 1e-3 * qd;
   }
   EXPECT_EQ(allocations() - before, 0);
