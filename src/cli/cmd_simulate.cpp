@@ -47,6 +47,7 @@ nlohmann::json toJson(const sim::RunSummary& s, const std::string& scenario) {
   j["physics_steps"] = s.physics_steps;
   j["video_frames"] = s.video_frames;
   j["files"] = s.files;
+  for (const auto& [name, value] : s.extra) j[name] = value;  // scenario-specific numbers
   return j;
 }
 

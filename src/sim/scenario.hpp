@@ -16,6 +16,7 @@
 //         auto cfg = ctx.controller_config;   // strict reader of the `controller:` section
 //         ... read keys, cfg.finish(); build the controller from ctx.model_path and ctx.options ...
 //       }}};
+// Scenario-specific metrics/outcome: set Scenario::make_observer to return a RunObserver.
 // (A registrar inside the static library centaur_sim would be dropped by the linker unless something
 // references its object file; the built-in `stand` is therefore added by scenarios() itself.)
 #include <functional>
@@ -48,12 +49,27 @@ struct ScenarioContext {
   MujocoRobot& robot;                               ///< reset to the initial state; may be adjusted
 };
 
+/// Optional per-scenario bookkeeping: sees every control period (ground truth included) and adds its
+/// own numbers to the summary (and to `--json`), e.g. apex height or wall contact for a jump.
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  /// After each control period (robot: ground truth; state/command: what the controller saw/sent).
+  virtual void observe(const MujocoRobot& robot, const RobotState& state, const JointCommand& command) = 0;
+  /// Extra summary values (name -> number), added to RunSummary::extra and the JSON line.
+  virtual std::map<std::string, double> summary() const { return {}; }
+  /// "" keeps the runner's outcome ("success"/"fall"); anything else replaces it (e.g. "no_wall_contact").
+  virtual std::string outcome() const { return ""; }
+};
+
 struct Scenario {
   std::string name;
   std::string help;
   std::string defaults_yaml;  ///< scenario defaults merged over the simulation defaults (duration, controller)
   std::vector<ScenarioOption> options;
   std::function<std::unique_ptr<Controller>(ScenarioContext&)> make_controller;
+  /// Optional (may be empty): created after the controller, with the same context.
+  std::function<std::unique_ptr<RunObserver>(ScenarioContext&)> make_observer = nullptr;
 };
 
 /// All scenarios (the built-in `stand` first, then every ScenarioRegistrar in registration order).

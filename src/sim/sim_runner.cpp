@@ -32,7 +32,7 @@ std::string configPathFor(const std::string& output_path) {
 }
 
 RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimConfig& config,
-                         const RunOutputs& out, const std::string& scenario_name) {
+                         const RunOutputs& out, const std::string& scenario_name, RunObserver* observer) {
   RunSummary sum;
   const double dt = robot.controlPeriodSeconds();
   const long periods = std::lround(config.duration / dt);
@@ -115,6 +115,7 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
     robot.controlPeriod(controller, state, command);
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
     if (log_now) log->appendLoop(robot, state, command);
+    if (observer) observer->observe(robot, state, command);
   }
   sum.control_periods = k;
   sum.physics_steps = k * robot.settings().control_decimation;
@@ -122,6 +123,11 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
   sum.final_pelvis_height_m = robot.basePosition().z();
   sum.wall_time_s = wall;
   sum.real_time_factor = wall > 0.0 ? sum.duration_s / wall : 0.0;
+  if (observer) {
+    sum.extra = observer->summary();
+    const std::string o = observer->outcome();
+    if (!o.empty()) sum.outcome = o;
+  }
   if (!snapshot_done) {  // snapshot at the very end (e.g. --at duration, or the run stopped early)
     writePng(out.snapshot_path, renderer->render(robot.data()), renderer->width(), renderer->height());
   }
@@ -173,8 +179,9 @@ RunSummary runScenario(const Scenario& scenario, const std::string& config_file,
   YamlReader controller_config = controllerSection(config);
   ScenarioContext ctx{config, controller_config, options, robot};
   std::unique_ptr<Controller> controller = scenario.make_controller(ctx);
+  std::unique_ptr<RunObserver> observer = scenario.make_observer ? scenario.make_observer(ctx) : nullptr;
   controller_config.finish();
-  return runSimulation(robot, *controller, config, outputs, scenario.name);
+  return runSimulation(robot, *controller, config, outputs, scenario.name, observer.get());
 }
 
 }  // namespace centaur::sim

@@ -37,13 +37,15 @@ struct RunSummary {
   long physics_steps = 0;
   int video_frames = 0;
   std::vector<std::string> files;        ///< files written
+  std::map<std::string, double> extra;   ///< the scenario observer's numbers (RunObserver::summary)
 };
 
 /// Run `controller` on `robot` (already reset) for config.duration seconds. controller.start() is called
 /// first. Throws InputError for bad outputs (e.g. snapshot time beyond the duration) BEFORE running, and
 /// RuntimeError for I/O failures (no half-written file is left).
 RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimConfig& config,
-                         const RunOutputs& outputs, const std::string& scenario_name);
+                         const RunOutputs& outputs, const std::string& scenario_name,
+                         RunObserver* observer = nullptr);
 
 /// The whole scenario: load the configuration (defaults <- file <- overrides), build the robot and the
 /// scenario's controller, run. `options` are the scenario options given on the command line.

@@ -3,6 +3,8 @@
 // scenario options with defaults / allowed values / required, the strict `controller:` section.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/error.hpp"
 #include "sim/scenario.hpp"
 #include "sim/sim_runner.hpp"
@@ -21,7 +23,28 @@ class ZeroController : public Controller {
   void tick(const RobotState&, JointCommand&) noexcept override {}
 };
 
-const ScenarioRegistrar kRegistrar{Scenario{
+/// Counts periods and reports the highest pelvis; declares its own outcome.
+class PeakObserver : public RunObserver {
+ public:
+  void observe(const MujocoRobot& robot, const RobotState&, const JointCommand&) override {
+    ++periods_;
+    peak_ = std::max(peak_, robot.basePosition().z());
+  }
+  std::map<std::string, double> summary() const override {
+    return {{"observed_periods", periods_}, {"peak_pelvis_height_m", peak_}};
+  }
+  std::string outcome() const override { return "observed"; }
+
+ private:
+  double periods_ = 0.0, peak_ = -1.0;
+};
+
+Scenario withObserver(Scenario s) {
+  s.make_observer = [](ScenarioContext&) -> std::unique_ptr<RunObserver> { return std::make_unique<PeakObserver>(); };
+  return s;
+}
+
+const ScenarioRegistrar kRegistrar{withObserver(Scenario{
     "test-scenario", "a scenario registered by a test",
     "duration: 0.05\nmodel: " + std::string(CENTAUR_SOURCE_DIR) +
         "/tests/data/sim_test_robot.xml\ncontroller: {gain: 2.0}\n",
@@ -32,7 +55,7 @@ const ScenarioRegistrar kRegistrar{Scenario{
       ctx.controller_config.finish();
       g_seen_options = ctx.options;
       return std::make_unique<ZeroController>();
-    }}};
+    }})};
 
 }  // namespace
 
@@ -50,6 +73,9 @@ TEST(ScenarioRegistry, OptionsGetDefaultsAndAreChecked) {
   EXPECT_EQ(g_seen_options.at("primitive"), "jump.h5");
   EXPECT_EQ(g_seen_options.at("stabilizer"), "none");  // default filled in
   EXPECT_DOUBLE_EQ(g_seen_gain, 3.5);
+  EXPECT_EQ(r.outcome, "observed");
+  EXPECT_DOUBLE_EQ(r.extra.at("observed_periods"), 50.0);
+  EXPECT_GT(r.extra.at("peak_pelvis_height_m"), 0.15);  // the test robot's pelvis starts at 0.2 m
   EXPECT_THROW(runScenario(s, "", {}, {}, RunOutputs{}), InputError);  // --primitive is required
   EXPECT_THROW(runScenario(s, "", {}, {{"primitive", "a.h5"}, {"stabilizer", "magic"}}, RunOutputs{}), InputError);
   EXPECT_THROW(runScenario(s, "", {}, {{"primitive", "a.h5"}, {"bogus", "1"}}, RunOutputs{}), InputError);
