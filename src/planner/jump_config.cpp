@@ -50,6 +50,7 @@ cost:
   base_pose: 0.0
   stance_foot_velocity: 100.0
   velocity_regularization: 0.0
+  base_angular_velocity: 1000.0
 solver:
   tol: 1.0e-8
   constr_viol_tol: 1.0e-4
@@ -192,6 +193,7 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   k.get("base_pose", c.cost.base_pose, 0.0, 1e6);
   k.get("stance_foot_velocity", c.cost.stance_foot_velocity, 0.0, 1e8);
   k.get("velocity_regularization", c.cost.velocity_regularization, 0.0, 1e6);
+  k.get("base_angular_velocity", c.cost.base_angular_velocity, 0.0, 1e8);
   k.finish();
 
   auto s = r.child("solver");

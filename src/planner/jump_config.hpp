@@ -57,6 +57,9 @@ struct CostConfig {
   double stance_foot_velocity = 100.0;  ///< |w_pdot_foot|^2 at every node where the foot is in contact: keeps
                                         ///< stance feet still BETWEEN shooting nodes (positions are pinned at nodes)
   double velocity_regularization = 0.0; ///< nu^T nu on every node
+  double base_angular_velocity = 1000.0;///< |omega_u|^2 on every node: the template's legs accelerate in the waist
+                                        ///< frame, so waist rotation makes the motion between knots deviate from
+                                        ///< the dynamics enforced at the knots
 };
 
 struct JumpConfig {

@@ -248,6 +248,10 @@ void JumpProblem::buildCosts() {
     auto e = std::make_shared<SquaredError<kNv>>(Eigen::Matrix<double, kNv, 1>::Zero(), "velocity_regularization");
     for (int k = 1; k <= N_; ++k) ocp_.addCost("velocity_regularization", e, idx("nu", k, 0, kNv), C.velocity_regularization);
   }
+  if (C.base_angular_velocity > 0) {
+    auto e = std::make_shared<SquaredError<3>>(Eigen::Vector3d::Zero(), "base_angular_velocity");
+    for (int k = 1; k <= N_; ++k) ocp_.addCost("base_angular_velocity", e, idx("nu", k, 3, 3), C.base_angular_velocity);
+  }
   const Eigen::Vector4d rho0(1, 0, 0, 0);
   if (C.base_orientation > 0) {
     auto e = std::make_shared<SquaredError<4>>(rho0, "base_orientation");
