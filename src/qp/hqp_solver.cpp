@@ -70,24 +70,24 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   solvers_.resize(levels);  // default-constructed in place, then sized
   level_x_.assign(levels, Eigen::VectorXd::Zero(n));
   level_rank_.assign(levels, 0);
-  qr_.clear();
-  qr_.reserve(levels);
+  int max_level_rows = 1;
+  for (int k = 0; k < levels; ++k) max_level_rows = std::max(max_level_rows, level_offset_[k + 1] - level_offset_[k]);
+  null_space_.reserve(max_level_rows, n);
+  B_.setZero(max_level_rows, n);
   const int m_rows = m_in_ + (has_box_ ? n : 0);  // reduced levels: constraint rows and box rows
   for (int k = 0; k < levels; ++k) {
     // level 0: the full problem with box bounds; levels >= 1: the reduced problem (<= n variables, rows only)
     solvers_[k].resize(n, 0, k == 0 ? m_in_ : m_rows);
     solvers_[k].settings() = settings;
-    qr_.emplace_back(n, std::max(level_offset_[k], 1));
-    qr_.back().setThreshold(rank_threshold_);
   }
-  Z_.setZero(n, n);
-  HZ_.setZero(n, n);
+  Z_[0].setZero(n, n);
+  Z_[1].setZero(n, n);
   Hy_.setZero(n, n);
+  HZ_.setZero(max_term_rows, n);
   Cy_.setZero(std::max(m_rows, 1), n);
   gy_.setZero(n);
   ylo_.setZero(std::max(m_rows, 1));
   yup_.setZero(std::max(m_rows, 1));
-  work_.setZero(n);
   tmp_.setZero(std::max(m_in_, n));
   failed_level_ = -1;
 }
@@ -102,26 +102,13 @@ void HqpSolver::assembleLevel(int k) {
   g_.setZero();
   int row = level_offset_[k];
   for (const Term& t : stack_.levels[k].terms) {
-    const Task& task = *t.task;
     const int m = t.size();
+    rowsOf(t);
     auto As = As_.topRows(m);
     auto WAs = WAs_.topRows(m);
-    auto bs = bs_.head(m);
-    for (int r = 0; r < m; ++r) {
-      const int tr = t.taskRow(r);
-      As.row(r) = task.A().row(tr);
-      bs[r] = task.lambda() * task.b()[tr];
-    }
-    if (task.diagonalWeight()) {
-      for (int r = 0; r < m; ++r) WAs.row(r) = (t.scale * task.weight()(t.taskRow(r), t.taskRow(r))) * As.row(r);
-    } else {
-      auto W = Wsel_.topLeftCorner(m, m);
-      for (int r = 0; r < m; ++r)
-        for (int c = 0; c < m; ++c) W(r, c) = t.scale * task.weight()(t.taskRow(r), t.taskRow(c));
-      WAs.noalias() = W * As;
-    }
+    weigh(t, As, WAs);
     H_.noalias() += As.transpose() * WAs;
-    g_.noalias() -= WAs.transpose() * bs;
+    g_.noalias() -= WAs.transpose() * bs_.head(m);
     E_.middleRows(row, m) = As;
     row += m;
   }
@@ -153,14 +140,15 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
   }
   const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);
   const int levels = numLevels();
+  nz_ = n_;
   for (int k = 0; k < levels; ++k) {
-    assembleLevel(k);
-    QpSolver& qp = solvers_[k];
     QpStatus status = QpStatus::kOptimal;
     if (k == 0) {
+      assembleLevel(0);
+      QpSolver& qp = solvers_[0];
       status = has_box_ ? qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, x_lo_, x_up_)
                         : qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, none, none);
-      if (status == QpStatus::kOptimal) level_x_[k] = qp.x();
+      if (status == QpStatus::kOptimal) level_x_[0] = qp.x();
     } else {
       status = solveReduced(k);
     }
@@ -177,38 +165,84 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
   return QpStatus::kOptimal;
 }
 
+void HqpSolver::updateNullSpace(int k) {
+  // Z_k = Z_{k-1} N, N a basis of null(A_{k-1} Z_{k-1}) (A_{k-1}: the rows of level k-1; Z_0 = I).
+  const int first = level_offset_[k - 1];
+  const int m = level_offset_[k] - first;
+  const int prev = cur_;
+  cur_ = 1 - cur_;
+  if (nz_ == 0) return;
+  if (k == 1) {
+    null_space_.compute(E_.middleRows(first, m), rank_tol_);
+    nz_ = n_ - null_space_.rank();
+    Z_[cur_].leftCols(nz_) = null_space_.basis();
+  } else {
+    auto B = B_.topLeftCorner(m, nz_);
+    B.noalias() = E_.middleRows(first, m) * Z_[prev].leftCols(nz_);
+    null_space_.compute(B, rank_tol_);
+    const int nz_new = nz_ - null_space_.rank();
+    Z_[cur_].leftCols(nz_new).noalias() = Z_[prev].leftCols(nz_) * null_space_.basis();
+    nz_ = nz_new;
+  }
+}
+
+void HqpSolver::rowsOf(const Term& t) {
+  const Task& task = *t.task;
+  const int m = t.size();
+  for (int r = 0; r < m; ++r) {
+    const int tr = t.taskRow(r);
+    As_.row(r) = task.A().row(tr);
+    bs_[r] = task.lambda() * task.b()[tr];
+  }
+}
+
+void HqpSolver::weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M, Eigen::Ref<Eigen::MatrixXd> WM) {
+  const Task& task = *t.task;
+  const int m = t.size();
+  if (task.diagonalWeight()) {
+    for (int r = 0; r < m; ++r) WM.row(r) = (t.scale * task.weight()(t.taskRow(r), t.taskRow(r))) * M.row(r);
+  } else {
+    auto W = Wsel_.topLeftCorner(m, m);
+    for (int r = 0; r < m; ++r)
+      for (int c = 0; c < m; ++c) W(r, c) = t.scale * task.weight()(t.taskRow(r), t.taskRow(c));
+    WM.noalias() = W * M;
+  }
+}
+
 QpStatus HqpSolver::solveReduced(int k) {
   const int n = n_;
-  const int m = level_offset_[k];
   const Eigen::VectorXd& xp = level_x_[k - 1];
-  // Null space of the rows of the levels above: E' P = Q R, Z = Q(:, rank:n).
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr = qr_[k];
-  qr.compute(E_.topRows(m).transpose());
-  const int rank = static_cast<int>(qr.rank());
-  level_rank_[k] = rank;
-  const int nz = n - rank;
-  if (nz == 0) {  // the levels above fix x completely
+  updateNullSpace(k);
+  level_rank_[k] = n - nz_;
+  const int nz = nz_;
+  if (nz == 0) {  // the levels above fix x completely (and every level below)
     level_x_[k] = xp;
     return QpStatus::kOptimal;
   }
-  auto Z = Z_.leftCols(nz);
-  Z.setZero();
-  Z.bottomRows(nz).setIdentity();
-  const int reflectors = static_cast<int>(qr.hCoeffs().size());
-  for (int i = reflectors - 1; i >= 0; --i) {
-    auto rows = Z.bottomRows(n - i);
-    rows.applyHouseholderOnTheLeft(qr.matrixQR().col(i).tail(n - i - 1), qr.hCoeffs()(i), work_.data());
-  }
-  // Reduced cost: 1/2 y' Z'HZ y + (Z'(H xp + g))' y.
-  auto HZ = HZ_.leftCols(nz);
-  HZ.noalias() = H_ * Z;
+  const auto Z = Z_[cur_].leftCols(nz);
+  // Reduced cost, x = xp + Z y:  sum_t scale_t ||A_t Z y + (A_t xp - lambda_t b_t)||^2_W + eps ||xp + Z y||^2
+  //   Hy = sum (A Z)' W (A Z) + eps I,   gy = sum (A Z)' W (A xp - lambda b) + eps Z' xp   (Z'Z = I).
   auto Hy = Hy_.topLeftCorner(nz, nz);
-  Hy.noalias() = Z.transpose() * HZ;
-  auto t = tmp_.head(n);
-  t = g_;
-  t.noalias() += H_ * xp;
   auto gy = gy_.head(nz);
-  gy.noalias() = Z.transpose() * t;
+  Hy.setZero();
+  gy.noalias() = stack_.regularisation * (Z.transpose() * xp);
+  int row = level_offset_[k];
+  for (const Term& t : stack_.levels[k].terms) {
+    const int m = t.size();
+    rowsOf(t);
+    E_.middleRows(row, m) = As_.topRows(m);  // for the next level's null space
+    row += m;
+    auto AZ = HZ_.topLeftCorner(m, nz);
+    AZ.noalias() = As_.topRows(m) * Z;
+    auto res = res_.head(m);
+    res.noalias() = As_.topRows(m) * xp;
+    res -= bs_.head(m);
+    auto WAZ = WAs_.topLeftCorner(m, nz);
+    weigh(t, AZ, WAZ);
+    Hy.noalias() += AZ.transpose() * WAZ;
+    gy.noalias() += WAZ.transpose() * res;
+  }
+  Hy.diagonal().array() += stack_.regularisation;
   // Rows: c_lo - C xp <= C Z y <= c_up - C xp ;  x_lo - xp <= Z y <= x_up - xp.
   int rows = 0;
   if (m_in_ > 0) {

@@ -10,9 +10,9 @@
 // every level's Hessian positive definite. Each level has its own QpSolver (warm-started from the previous
 // tick's active set). The solution of the last level is returned.
 //
-// The equalities of level k are eliminated (null-space method): with E the stacked rows of the levels above,
-// a rank-revealing QR E' P = Q R gives an orthonormal basis Z of null(E) (the last n - rank columns of Q),
-// and x = x_{k-1}* + Z y. Level k is then a QP in y (n - rank variables) with only inequality rows
+// The equalities of level k are eliminated (null-space method): Z_k, an orthonormal basis of the null space of
+// the stacked rows of the levels above, is built incrementally, Z_k = Z_{k-1} N with N a basis of
+// null(A_{k-1} Z_{k-1}) from a rank-revealing (column-pivoted Householder) QR, and x = x_{k-1}* + Z_k y. Level k is then a QP in y (n - rank variables) with only inequality rows
 // (the constraint rows times Z and the box bounds as rows Z), which is much smaller than the full problem
 // and makes redundant rows of the levels above harmless (they do not increase the rank).
 //
@@ -20,10 +20,10 @@
 //   update()  -> each distinct task / constraint recomputes its A, b / bounds (once, even if shared)
 //   solve(x)  -> no allocation, no throw, returns a status the caller must check.
 #include <Eigen/Core>
-#include <Eigen/QR>
 
 #include <vector>
 
+#include "qp/null_space.hpp"
 #include "qp/qp_solver.hpp"
 #include "qp/stack.hpp"
 
@@ -61,8 +61,11 @@ class HqpSolver {
   double levelCost(int k, const Eigen::Ref<const Eigen::VectorXd>& x);
 
  private:
-  void assembleLevel(int k);  // H_, g_ and the level's rows in E_
-  QpStatus solveReduced(int k);  // level k >= 1 in the null space of the levels above
+  void assembleLevel(int k);      // level 0: H_, g_ and its rows in E_
+  QpStatus solveReduced(int k);   // level k >= 1 in the null space of the levels above
+  void updateNullSpace(int k);    // Z_k from Z_{k-1} and the rows of level k-1
+  void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
+  void weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M, Eigen::Ref<Eigen::MatrixXd> WM);
 
   Stack stack_;
   int n_ = 0;
@@ -76,11 +79,12 @@ class HqpSolver {
   Eigen::MatrixXd H_, E_, As_, WAs_, Wsel_, C_;
   Eigen::VectorXd g_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
   // null-space reduction (levels >= 1)
-  std::vector<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>> qr_;
-  Eigen::MatrixXd Z_, HZ_, Hy_, Cy_;
-  Eigen::VectorXd gy_, ylo_, yup_, work_, tmp_;
+  NullSpace null_space_;
+  Eigen::MatrixXd Z_[2], B_, HZ_, Hy_, Cy_;
+  int cur_ = 0, nz_ = 0;
+  Eigen::VectorXd gy_, ylo_, yup_, tmp_;
   std::vector<int> level_rank_;
-  double rank_threshold_ = 1e-10;
+  double rank_tol_ = 1e-10;  // relative pivot threshold of the rank-revealing QR
   int failed_level_ = -1;
 };
 
