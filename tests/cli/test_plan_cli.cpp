@@ -1,0 +1,98 @@
+// ctest-labels: integration cli
+// `centaur plan`: bad input is refused with exit code 2, a message naming file, key and range, and no output
+// file; a solver that stops early exits 3 with the file written and flagged; --json ends with one object.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "planner/primitive_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int code;
+  std::string out;  // stdout + stderr
+};
+
+CliRun run(const std::string& args) {
+  const std::string cmd = std::string(CENTAUR_BIN) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
+  const int status = pclose(p);
+  return {WEXITSTATUS(status), out};
+}
+
+fs::path tempDir() {
+  const fs::path d = fs::temp_directory_path() / ("centaur_cli_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+std::string writeFile(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+void expectRefused(const std::string& args, const fs::path& out, const std::vector<std::string>& must_contain) {
+  const CliRun r = run(args);
+  EXPECT_EQ(r.code, 2) << r.out;
+  for (const auto& s : must_contain) EXPECT_NE(r.out.find(s), std::string::npos) << "missing '" << s << "' in: " << r.out;
+  EXPECT_FALSE(fs::exists(out)) << "an output file was left behind";
+  for (const auto& e : fs::directory_iterator(out.parent_path())) {
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left: " << e.path();
+  }
+}
+
+}  // namespace
+
+TEST(PlanCli, MalformedYamlIsBadInput) {
+  const fs::path d = tempDir(), out = d / "a.h5";
+  const std::string cfg = writeFile(d / "bad.yaml", "horizon: {intervals: 30\ncost: [\n");
+  expectRefused("plan squat-jump --config " + cfg + " --out " + out.string(), out, {"bad.yaml", "line"});
+}
+
+TEST(PlanCli, UnknownKeyIsBadInput) {
+  const fs::path d = tempDir(), out = d / "b.h5";
+  const std::string cfg = writeFile(d / "typo.yaml", "horizon:\n  intervalz: 30\n");
+  expectRefused("plan squat-jump --config " + cfg + " --out " + out.string(), out, {"typo.yaml", "horizon.intervalz"});
+}
+
+TEST(PlanCli, NegativeMassIsBadInput) {
+  const fs::path d = tempDir(), out = d / "c.h5";
+  expectRefused("plan squat-jump --set model.waist_mass=-3 --out " + out.string(), out, {"model.waist_mass", "[0.001, 1000]"});
+}
+
+TEST(PlanCli, ReversedStepBoundsAreBadInput) {
+  const fs::path d = tempDir(), out = d / "d.h5";
+  expectRefused("plan squat-jump --set horizon.dt_min=0.2 --set horizon.dt_max=0.05 --out " + out.string(), out,
+                {"horizon.dt_min", "dt_max"});
+}
+
+TEST(PlanCli, UnreachableTargetIsBadInput) {
+  const fs::path d = tempDir(), out = d / "e.h5";
+  expectRefused("plan squat-jump --set target.height=5 --out " + out.string(), out, {"target.height", "unreachable"});
+}
+
+TEST(PlanCli, SolverStoppedEarlyExits3WithTheFileFlagged) {
+  const fs::path d = tempDir(), out = d / "f.h5";
+  const CliRun r = run("plan squat-jump --quiet --json --set solver.max_iter=3 --out " + out.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  ASSERT_TRUE(fs::exists(out));
+  const auto p = centaur::planner::readPrimitive(out.string(), "squat-jump");
+  EXPECT_EQ(p.solve.status, "max_iterations");
+  const std::string last = r.out.substr(r.out.rfind('{'));
+  const auto j = nlohmann::json::parse(last);
+  EXPECT_EQ(j["status"], "max_iterations");
+  EXPECT_EQ(j["iterations"], 3);
+  for (const char* k : {"solve_time_s", "cost", "max_constraint_violation"}) EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_TRUE(fs::exists(d / "f.squat-jump.yaml")) << "effective configuration saved next to the output";
+}
