@@ -179,7 +179,9 @@ void HqpSolver::updateNullSpace(int k) {
   } else {
     auto B = B_.topLeftCorner(m, nz_);
     B.noalias() = E_.middleRows(first, m) * Z_[prev].leftCols(nz_);
-    null_space_.compute(B, rank_tol_);
+    double scale = 0.0;  // rank threshold relative to the rows before projection
+    for (int i = 0; i < m; ++i) scale = std::max(scale, E_.row(first + i).norm());
+    null_space_.compute(B, rank_tol_, scale);
     const int nz_new = nz_ - null_space_.rank();
     Z_[cur_].leftCols(nz_new).noalias() = Z_[prev].leftCols(nz_) * null_space_.basis();
     nz_ = nz_new;

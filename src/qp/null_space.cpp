@@ -16,7 +16,7 @@ void NullSpace::reserve(int m_max, int p_max) {
   rank_ = 0;
 }
 
-int NullSpace::compute(const Eigen::Ref<const Eigen::MatrixXd>& B, double tol) {
+int NullSpace::compute(const Eigen::Ref<const Eigen::MatrixXd>& B, double tol, double scale) {
   const int m = static_cast<int>(B.rows());
   const int p = static_cast<int>(B.cols());
   p_ = p;
@@ -25,6 +25,7 @@ int NullSpace::compute(const Eigen::Ref<const Eigen::MatrixXd>& B, double tol) {
   M = B.transpose();
   double max_norm = 0.0;
   for (int c = 0; c < m; ++c) max_norm = std::max(max_norm, M.col(c).norm());
+  if (scale > 0.0) max_norm = scale;
   const int steps = std::min(p, m);
   for (int j = 0; j < steps && max_norm > 0.0; ++j) {
     // Pivot: the column with the largest norm in the rows not yet reduced.

@@ -1,7 +1,7 @@
 #pragma once
 // Orthonormal basis of the null space of a matrix B (m x p): Householder QR with column pivoting of B',
-// B' P = Q R; the rank is the number of pivots whose remaining column norm exceeds tol * the largest column
-// norm of B', and the basis is Q(:, rank:p). Works on a preallocated workspace: compute() never allocates,
+// B' P = Q R; the rank is the number of pivots whose remaining column norm exceeds tol * a scale (the largest
+// row norm of B by default), and the basis is Q(:, rank:p). Works on a preallocated workspace: compute() never allocates,
 // whatever m <= m_max and p <= p_max (Eigen's decompositions reallocate when the sizes change).
 #include <Eigen/Core>
 
@@ -11,8 +11,11 @@ class NullSpace {
  public:
   /// Allocate for B with at most m_max rows and p_max columns.
   void reserve(int m_max, int p_max);
-  /// Factorise B (m x p) and form the basis; returns the rank. No allocation.
-  int compute(const Eigen::Ref<const Eigen::MatrixXd>& B, double tol);
+  /// Factorise B (m x p) and form the basis; returns the rank. A pivot counts when its remaining column norm
+  /// exceeds tol * scale, scale = `scale` if > 0, else the largest row norm of B (pass the norm of the rows
+  /// before a projection, so that rows projected to rounding noise are not taken as independent).
+  /// No allocation.
+  int compute(const Eigen::Ref<const Eigen::MatrixXd>& B, double tol, double scale = 0.0);
   int rank() const { return rank_; }
   /// p x (p - rank), orthonormal columns spanning {y : B y = 0}.
   Eigen::Block<const Eigen::MatrixXd> basis() const { return N_.topLeftCorner(p_, p_ - rank_); }

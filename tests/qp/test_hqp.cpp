@@ -204,3 +204,26 @@ TEST(Hqp, InfeasibleConstraintsAreReportedWithTheLevel) {
   c->upperBounds()[0] = 2.0;
   EXPECT_EQ(hqp.solve(x), QpStatus::kInvalidInput);
 }
+
+TEST(Hqp, RedundantLevelsAndFullyDeterminedLevels) {
+  // A task repeated at a lower level (all its rows dependent on the level above) changes nothing, and a level
+  // below a full-rank level is fixed (null space of dimension 0).
+  std::mt19937 rng(8);
+  const int n = 7;
+  auto a = randomTask(rng, "a", 4, n), b = randomTask(rng, "b", 3, n);
+  auto full = std::make_shared<LinearTask>("full", MatrixXd::Identity(n, n) + 0.1 * MatrixXd::Ones(n, n),
+                                           VectorXd::Ones(n));
+  auto box = std::make_shared<LinearConstraint>("box", n, 0);
+  box->lowerBounds().setConstant(-0.5);
+  box->upperBounds().setConstant(0.5);
+  HqpSolver ab(a / b << box, n), aab(a / a / b << box, n);
+  VectorXd x1(n), x2(n);
+  ASSERT_EQ(ab.solve(x1), QpStatus::kOptimal);
+  ASSERT_EQ(aab.solve(x2), QpStatus::kOptimal);
+  EXPECT_LT((x1 - x2).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_EQ(aab.levelRank(2), ab.levelRank(1));
+  HqpSolver fixed(Stack(full) / b, n);
+  ASSERT_EQ(fixed.solve(x1), QpStatus::kOptimal);
+  EXPECT_EQ(fixed.levelRank(1), n);
+  EXPECT_LT((x1 - fixed.levelSolution(0)).norm(), 1e-15);
+}
