@@ -1,0 +1,70 @@
+// ctest-labels: unit
+// Planner configuration: the shipped files document exactly the embedded defaults; bad values are refused
+// with the file, key and range in the message.
+#include <gtest/gtest.h>
+
+#include "common/yaml_reader.hpp"
+#include "planner/jump_config.hpp"
+
+using namespace centaur;
+using namespace centaur::planner;
+
+namespace {
+std::string shipped(const std::string& name) { return std::string(CENTAUR_SOURCE_DIR) + "/config/" + name; }
+}  // namespace
+
+TEST(JumpConfig, ShippedFilesAreTheEmbeddedDefaults) {
+  for (const std::string p : {"squat-jump", "half-squat-jump"}) {
+    const YAML::Node defaults = loadYamlString(defaultJumpYaml(p), "<defaults>");
+    const YAML::Node merged = mergeYaml(defaults, loadYamlFile(shipped(p + ".yaml")));
+    EXPECT_EQ(toYamlString(merged), toYamlString(defaults)) << p;
+  }
+}
+
+TEST(JumpConfig, DefaultsAreValidAndDescribeThePaperSettings) {
+  const JumpConfig c = loadJumpConfig("squat-jump", "", {});
+  EXPECT_EQ(c.horizon.intervals, 30);
+  EXPECT_EQ(c.horizon.takeoff, 10);
+  EXPECT_EQ(c.horizon.landing, 20);
+  EXPECT_DOUBLE_EQ(c.horizon.dt_min, 0.03);
+  EXPECT_DOUBLE_EQ(c.horizon.dt_max, 0.25);
+  EXPECT_DOUBLE_EQ(c.cost.base_height, 50.0);
+  EXPECT_DOUBLE_EQ(c.cost.joint_velocity, 1.0);
+  EXPECT_DOUBLE_EQ(c.cost.force_rate, 1.0);
+  EXPECT_DOUBLE_EQ(c.cost.acceleration_rate, 1e-3);
+  EXPECT_NEAR(c.initialWaistHeight(), 0.7188, 1e-9);
+  EXPECT_NEAR(c.model.totalMass(), 93.113, 1e-9);
+  const JumpConfig h = loadJumpConfig("half-squat-jump", "", {});
+  EXPECT_DOUBLE_EQ(h.cost.base_pose, 50.0);
+  EXPECT_NEAR(h.wallX(), -0.35 - 0.15 - 0.078, 1e-12);
+}
+
+TEST(JumpConfig, AuthorsSettingsLoad) {
+  const JumpConfig c = loadJumpConfig("squat-jump", shipped("squat-jump-authors.yaml"), {});
+  EXPECT_EQ(c.model.preset, "centauro-authors");
+  EXPECT_NEAR(c.model.totalMass(), 109.0, 1e-9);
+  EXPECT_DOUBLE_EQ(c.horizon.dt_max, 0.15);
+  EXPECT_DOUBLE_EQ(c.contact.mu, 0.01);
+  EXPECT_NEAR(c.initialWaistHeight(), 0.635, 1e-12);
+}
+
+TEST(JumpConfig, BadValuesNameTheKeyAndRange) {
+  auto message = [](const std::vector<std::string>& sets) {
+    try {
+      loadJumpConfig("squat-jump", "", sets);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({"horizon.intervals=2"}).find("horizon.intervals"), std::string::npos);
+  EXPECT_NE(message({"contact.friction=square"}).find("pyramid, cone"), std::string::npos);
+  EXPECT_NE(message({"model.preset=atlas"}).find("centauro-authors"), std::string::npos);
+  EXPECT_NE(message({"model.waist_inertia=[1, 1, 1, 5, 0, 0]"}).find("positive definite"), std::string::npos);
+  EXPECT_NE(message({"feet=[[0.35, 0.35, -0.2], [0.35, -0.35, -0.6], [-0.35, 0.35, -0.6], [-0.35, -0.35, -0.6]]"})
+                .find("workspace"),
+            std::string::npos);
+  EXPECT_NE(message({"primitive=half-squat-jump"}).find("primitive"), std::string::npos);
+  EXPECT_NE(message({"target.height=0.5"}).find("above the initial waist height"), std::string::npos);
+  EXPECT_NE(message({"cost.unknown_term=1"}).find("cost.unknown_term"), std::string::npos);
+}
