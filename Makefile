@@ -44,11 +44,18 @@ bench: build
 
 demo: build
 	@mkdir -p $(OUT)
-	$(CENTAUR) plan squat-jump --out $(OUT)/squat-jump.h5
+	$(CENTAUR) plan squat-jump --out $(OUT)/primitives.h5
 	$(CENTAUR) plan half-squat-jump --out $(OUT)/primitives.h5 --append
-	$(CENTAUR) inspect $(OUT)/squat-jump.h5
-	$(CENTAUR) plot $(OUT)/squat-jump.h5 --out $(OUT)/squat-jump.png
-	@echo "Demo outputs are in $(OUT)/"
+	$(CENTAUR) inspect $(OUT)/primitives.h5
+	$(CENTAUR) plot $(OUT)/primitives.h5 --out $(OUT)/primitives.png
+	$(CENTAUR) simulate stand --duration 5 --out $(OUT)/stand.h5 --snapshot $(OUT)/stand.png --at 2 --json
+	@echo
+	@echo "Demo outputs in $(OUT)/:"
+	@echo "  primitives.h5                      both planned jumps (docs/primitive-format.md)"
+	@echo "  primitives-squat-jump.png          forces, feet and waist of the squat jump (like the paper's Fig. 3)"
+	@echo "  primitives-half-squat-jump.png     the same for the half-squat jump (rear wheels onto a wall)"
+	@echo "  primitives.*.yaml                  the effective planner configurations"
+	@echo "  stand.h5, stand.png                CENTAURO standing in MuJoCo: log and snapshot (docs/sim.md)"
 
 clean:
 	rm -rf $(BUILD)
