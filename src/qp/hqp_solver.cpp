@@ -1,5 +1,7 @@
 #include "qp/hqp_solver.hpp"
 
+#include "qp/product.hpp"
+
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -107,7 +109,7 @@ void HqpSolver::assembleLevel(int k) {
     auto As = As_.topRows(m);
     auto WAs = WAs_.topRows(m);
     weigh(t, As, WAs);
-    H_.noalias() += As.transpose() * WAs;
+    productNoAlloc(H_, As.transpose(), WAs, true);
     g_.noalias() -= WAs.transpose() * bs_.head(m);
     E_.middleRows(row, m) = As;
     row += m;
@@ -178,12 +180,12 @@ void HqpSolver::updateNullSpace(int k) {
     Z_[cur_].leftCols(nz_) = null_space_.basis();
   } else {
     auto B = B_.topLeftCorner(m, nz_);
-    B.noalias() = E_.middleRows(first, m) * Z_[prev].leftCols(nz_);
+    productNoAlloc(B, E_.middleRows(first, m), Z_[prev].leftCols(nz_), false);
     double scale = 0.0;  // rank threshold relative to the rows before projection
     for (int i = 0; i < m; ++i) scale = std::max(scale, E_.row(first + i).norm());
     null_space_.compute(B, rank_tol_, scale);
     const int nz_new = nz_ - null_space_.rank();
-    Z_[cur_].leftCols(nz_new).noalias() = Z_[prev].leftCols(nz_) * null_space_.basis();
+    productNoAlloc(Z_[cur_].leftCols(nz_new), Z_[prev].leftCols(nz_), null_space_.basis(), false);
     nz_ = nz_new;
   }
 }
@@ -207,7 +209,7 @@ void HqpSolver::weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M,
     auto W = Wsel_.topLeftCorner(m, m);
     for (int r = 0; r < m; ++r)
       for (int c = 0; c < m; ++c) W(r, c) = t.scale * task.weight()(t.taskRow(r), t.taskRow(c));
-    WM.noalias() = W * M;
+    productNoAlloc(WM, W, M, false);
   }
 }
 
@@ -235,20 +237,20 @@ QpStatus HqpSolver::solveReduced(int k) {
     E_.middleRows(row, m) = As_.topRows(m);  // for the next level's null space
     row += m;
     auto AZ = HZ_.topLeftCorner(m, nz);
-    AZ.noalias() = As_.topRows(m) * Z;
+    productNoAlloc(AZ, As_.topRows(m), Z, false);
     auto res = res_.head(m);
     res.noalias() = As_.topRows(m) * xp;
     res -= bs_.head(m);
     auto WAZ = WAs_.topLeftCorner(m, nz);
     weigh(t, AZ, WAZ);
-    Hy.noalias() += AZ.transpose() * WAZ;
+    productNoAlloc(Hy, AZ.transpose(), WAZ, true);
     gy.noalias() += WAZ.transpose() * res;
   }
   Hy.diagonal().array() += stack_.regularisation;
   // Rows: c_lo - C xp <= C Z y <= c_up - C xp ;  x_lo - xp <= Z y <= x_up - xp.
   int rows = 0;
   if (m_in_ > 0) {
-    Cy_.topLeftCorner(m_in_, nz).noalias() = C_ * Z;
+    productNoAlloc(Cy_.topLeftCorner(m_in_, nz), C_, Z, false);
     auto cxp = tmp_.head(m_in_);
     cxp.noalias() = C_ * xp;
     ylo_.head(m_in_) = c_lo_ - cxp;

@@ -151,3 +151,52 @@ TEST(QpAllocations, HqpUpdateAndSolveNeverAllocate) {
   EXPECT_EQ(allocations() - before, 0);
   EXPECT_EQ(ok, 1000);
 }
+
+TEST(QpAllocations, LargestSizesNeverAllocate) {
+  // The largest sizes planned for (100 variables, 100 equality rows of which some dependent, 200 rows) and a
+  // 3-level cascade over 100 variables: Eigen's blocked kernels must stay on the stack too.
+  const int n = 100, m_eq = 100, m_in = 200;
+  std::mt19937 rng(9);
+  std::normal_distribution<double> N(0.0, 1.0);
+  auto randn = [&](int r, int c) {
+    MatrixXd M(r, c);
+    for (int i = 0; i < M.size(); ++i) M.data()[i] = N(rng);
+    return M;
+  };
+  const MatrixXd M = randn(n, n);
+  const MatrixXd H = M.transpose() * M / n + 0.1 * MatrixXd::Identity(n, n);
+  MatrixXd A = randn(m_eq, n);
+  A.bottomRows(20) = A.topRows(20);  // dependent rows (rank 80)
+  const MatrixXd C = randn(m_in, n);
+  const VectorXd x0 = randn(n, 1), g = 5.0 * randn(n, 1);
+  const VectorXd b = A * x0;
+  const VectorXd c_lo = (C * x0).array() - 0.2, c_up = (C * x0).array() + 0.2;
+  const VectorXd x_lo = x0.array() - 0.3, x_up = x0.array() + 0.3;
+  QpSolver s(n, m_eq, m_in);
+  long before = allocations();
+  ASSERT_EQ(s.solve(H, g, A, b, C, c_lo, c_up, x_lo, x_up), QpStatus::kOptimal);
+  ASSERT_EQ(s.solve(H, g, A, b, C, c_lo, c_up, x_lo, x_up), QpStatus::kOptimal);  // warm
+  EXPECT_EQ(allocations() - before, 0);
+  EXPECT_GT(s.numActive(), 80);
+
+  auto t0 = std::make_shared<LinearTask>("t0", randn(40, n), randn(40, 1));
+  auto t1 = std::make_shared<LinearTask>("t1", randn(30, n), randn(30, 1));
+  auto t2 = std::make_shared<LinearTask>("t2", MatrixXd::Identity(n, n), randn(n, 1));
+  auto lim = std::make_shared<LinearConstraint>("lim", n, m_in);
+  lim->C() = C;
+  lim->cLower() = c_lo - C * x0;  // x = 0 feasible
+  lim->cUpper() = c_up - C * x0;
+  lim->lowerBounds().setConstant(-0.3);
+  lim->upperBounds().setConstant(0.3);
+  HqpSolver hqp(t0 / t1 / (t2 + t0 % Rows{0, 1}) << lim, n);
+  VectorXd x(n);
+  before = allocations();
+  int ok = 0;
+  for (int k = 0; k < 20; ++k) {
+    t0->b()[0] += 0.01;
+    hqp.update();
+    if (hqp.solve(x) == QpStatus::kOptimal) ++ok;
+  }
+  EXPECT_EQ(allocations() - before, 0);
+  EXPECT_EQ(ok, 20);
+}
