@@ -44,7 +44,8 @@ class Constraint {
 /// Joint position limits as velocity bounds over one tick:
 ///   scaling (q_min - q) / dt <= qd <= scaling (q_max - q) / dt,   qd = x.segment(offset, nj).
 /// scaling in (0, 1] (1: the limit can be reached in one tick). Set q with setJointPositions() before update().
-/// If q lies outside [q_min, q_max], the bounds push it back (a bound of the wrong sign).
+/// If q lies outside [q_min, q_max], the bounds push it back (a bound of the wrong sign); HqpSolver resolves a
+/// conflict with the velocity limits in favour of the velocity limit (see HqpSolver::solve).
 class JointPositionLimits : public Constraint {
  public:
   JointPositionLimits(std::string name, int n, int offset, const Eigen::VectorXd& q_min, const Eigen::VectorXd& q_max,

@@ -3,6 +3,7 @@
 #include "qp/product.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -138,6 +139,15 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
       c_lo_.segment(row, m) = c->cLower();
       c_up_.segment(row, m) = c->cUpper();
       row += m;
+    }
+  }
+  // Crossed bounds (e.g. q beyond a position limit by more than one tick at the velocity limit: the position
+  // bound asks to come back faster than the velocity bound allows) are resolved in favour of the bound of
+  // smaller magnitude, i.e. move back as fast as allowed, instead of making every level infeasible.
+  for (Eigen::Index j = 0; j < x_lo_.size(); ++j) {
+    if (x_lo_[j] > x_up_[j]) {
+      const double v = std::abs(x_lo_[j]) < std::abs(x_up_[j]) ? x_lo_[j] : x_up_[j];
+      x_lo_[j] = x_up_[j] = v;
     }
   }
   const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);

@@ -42,6 +42,8 @@ class HqpSolver {
   /// update() must honour that).
   void update();
 
+  /// Box bounds of all constraints are intersected; crossed bounds (lo > up, e.g. a joint beyond its position
+  /// limit by more than one tick at its velocity limit) are both set to the one of smaller magnitude.
   /// Solve the cascade with the tasks' current data; x (size n) receives the last level's solution, clipped to
   /// the box bounds (a change within the QP's feasibility tolerance) so that bounds hold exactly.
   /// On failure of level k, failedLevel() == k and x holds the solution of level k-1 (unchanged if k == 0).

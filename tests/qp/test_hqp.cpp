@@ -192,16 +192,18 @@ TEST(Hqp, JointLimitsHoldAtEveryTickWithRandomTargets) {
 
 TEST(Hqp, InfeasibleConstraintsAreReportedWithTheLevel) {
   auto a = std::make_shared<LinearTask>("a", MatrixXd::Identity(2, 2), VectorXd::Ones(2));
-  auto c = std::make_shared<LinearConstraint>("c", 2, 0);
-  c->lowerBounds()[0] = 1.0;
-  c->upperBounds()[0] = 0.0;
+  // x0 + x1 >= 1 and x0 + x1 <= 0 (rows; crossed box bounds would be resolved, rows are not).
+  auto c = std::make_shared<LinearConstraint>("c", 2, 2);
+  c->C().setOnes();
+  c->cLower()[0] = 1.0;
+  c->cUpper()[1] = 0.0;
   HqpSolver hqp(Stack(a) << c, 2);
   VectorXd x = VectorXd::Constant(2, 7.0);
   EXPECT_EQ(hqp.solve(x), QpStatus::kInfeasible);
   EXPECT_EQ(hqp.failedLevel(), 0);
   EXPECT_EQ(x[0], 7.0);  // untouched
   a->b()[1] = std::numeric_limits<double>::quiet_NaN();
-  c->upperBounds()[0] = 2.0;
+  c->cUpper()[1] = 2.0;
   EXPECT_EQ(hqp.solve(x), QpStatus::kInvalidInput);
 }
 
@@ -226,4 +228,30 @@ TEST(Hqp, RedundantLevelsAndFullyDeterminedLevels) {
   ASSERT_EQ(fixed.solve(x1), QpStatus::kOptimal);
   EXPECT_EQ(fixed.levelRank(1), n);
   EXPECT_LT((x1 - fixed.levelSolution(0)).norm(), 1e-15);
+}
+
+TEST(Hqp, JointBeyondItsLimitIsBroughtBackAtTheVelocityLimit) {
+  // q is 0.1 rad beyond q_max: the position bound asks for -100 rad/s over one tick, the velocity limit allows
+  // -2 rad/s; the solver must not report infeasible but move back at -2 rad/s, and converge into the range.
+  PlanarArm arm(3);
+  arm.q << 0.2, 1.1, 0.0;
+  const double dt = 1e-3;
+  auto posture = std::make_shared<PostureTask>("posture", arm);
+  posture->q_ref << 0.2, 2.0, 0.0;  // wants to go further out
+  auto pos = std::make_shared<JointPositionLimits>("q", 3, 0, VectorXd::Constant(3, -1.0), VectorXd::Constant(3, 1.0),
+                                                   dt);
+  auto vel = std::make_shared<JointVelocityLimits>("qd", 3, 0, VectorXd::Constant(3, 2.0));
+  HqpSolver hqp(Stack(posture) << pos << vel, 3);
+  VectorXd qd(3);
+  pos->setJointPositions(arm.q);
+  hqp.update();
+  ASSERT_EQ(hqp.solve(qd), QpStatus::kOptimal);
+  EXPECT_DOUBLE_EQ(qd[1], -2.0);
+  for (int k = 0; k < 100; ++k) {
+    arm.q += dt * qd;
+    pos->setJointPositions(arm.q);
+    hqp.update();
+    ASSERT_EQ(hqp.solve(qd), QpStatus::kOptimal);
+  }
+  EXPECT_LE(arm.q[1], 1.0 + 1e-12);
 }
