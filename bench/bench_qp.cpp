@@ -149,6 +149,43 @@ void BM_HqpCascadeWarm(benchmark::State& state) {
 }
 BENCHMARK(BM_HqpCascadeWarm)->Unit(benchmark::kMicrosecond);
 
+// The shape of the CENTAURO stack (issue 4): x = [base twist (6); qd (39)]; feet (4 x 6 rows) / pelvis angular
+// velocity (3) / (angular momentum (3) + posture (39)), joint position and velocity limits as box bounds only.
+// Random Jacobian-like rows stand in for the model; warm, with a drifting feet target.
+void BM_HqpCentauroShapeWarm(benchmark::State& state) {
+  using namespace centaur;
+  const int n = 45, nj = 39;
+  std::mt19937 rng(4);
+  std::normal_distribution<double> N(0.0, 1.0);
+  auto rnd = [&](int rows, int cols) {
+    MatrixXd A(rows, cols);
+    for (int i = 0; i < A.size(); ++i) A.data()[i] = N(rng);
+    return A;
+  };
+  auto feet = std::make_shared<LinearTask>("feet", rnd(24, n), rnd(24, 1));
+  auto pelvis = std::make_shared<LinearTask>("pelvis", rnd(3, n), rnd(3, 1));
+  auto ang_mom = std::make_shared<LinearTask>("ang_mom", rnd(3, n), rnd(3, 1));
+  MatrixXd P = MatrixXd::Zero(nj, n);
+  P.rightCols(nj).setIdentity();
+  auto posture = std::make_shared<LinearTask>("posture", P, 3.0 * rnd(nj, 1));
+  const VectorXd q_min = VectorXd::Constant(nj, -1.0), q_max = VectorXd::Constant(nj, 1.0);
+  auto pos = std::make_shared<JointPositionLimits>("q", n, 6, q_min, q_max, 1e-3, 0.5);
+  auto vel = std::make_shared<JointVelocityLimits>("qd", n, 6, VectorXd::Constant(nj, 2.0));
+  VectorXd q = 0.9 * rnd(nj, 1).cwiseMax(-1.0).cwiseMin(1.0);
+  pos->setJointPositions(q);
+  HqpSolver hqp((feet / pelvis) / (ang_mom + 0.01 * posture) << pos << vel, n);
+  const VectorXd b0 = feet->b();
+  VectorXd x(n);
+  long k = 0;
+  for (auto _ : state) {
+    feet->b() = b0 + 0.01 * std::sin(0.01 * static_cast<double>(k++)) * VectorXd::Ones(24);
+    hqp.update();
+    if (hqp.solve(x) != QpStatus::kOptimal) state.SkipWithError("HQP not optimal");
+  }
+  state.counters["active_level0"] = hqp.levelSolver(0).numActive();
+}
+BENCHMARK(BM_HqpCentauroShapeWarm)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();
