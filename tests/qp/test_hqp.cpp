@@ -255,3 +255,32 @@ TEST(Hqp, JointBeyondItsLimitIsBroughtBackAtTheVelocityLimit) {
   }
   EXPECT_LE(arm.q[1], 1.0 + 1e-12);
 }
+
+TEST(Hqp, WarmStartNeverChangesTheAnswer) {
+  // Closed loop with limits being hit: a persistent (warm) solver and one made cold at every tick agree.
+  PlanarArm arm(5);
+  arm.q << 0.1, 0.4, -0.3, 0.2, 0.5;
+  const double dt = 1e-3;
+  auto tip = std::make_shared<TipPositionTask>("tip", arm);
+  auto posture = std::make_shared<PostureTask>("posture", arm);
+  auto extra = std::make_shared<LinearTask>("extra", MatrixXd::Ones(1, 5), VectorXd::Zero(1));
+  auto pos = std::make_shared<JointPositionLimits>("q", 5, 0, VectorXd::Constant(5, -0.6), VectorXd::Constant(5, 0.6),
+                                                   dt);
+  auto vel = std::make_shared<JointVelocityLimits>("qd", 5, 0, VectorXd::Constant(5, 1.5));
+  tip->setLambda(30.0);
+  const Stack s = tip / extra / posture << pos << vel;
+  HqpSolver warm(s, 5), cold(s, 5);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  VectorXd xw(5), xc(5);
+  for (int k = 0; k < 3000; ++k) {
+    if (k % 300 == 0) tip->target = Eigen::Vector2d(U(rng), U(rng));
+    pos->setJointPositions(arm.q);
+    warm.update();
+    for (int l = 0; l < cold.numLevels(); ++l) cold.levelSolver(l).resetWarmStart();
+    ASSERT_EQ(warm.solve(xw), QpStatus::kOptimal) << k;
+    ASSERT_EQ(cold.solve(xc), QpStatus::kOptimal) << k;
+    ASSERT_LT((xw - xc).cwiseAbs().maxCoeff(), 1e-9) << "tick " << k;
+    arm.q += dt * xw;
+  }
+}
