@@ -2,12 +2,15 @@
 // Element functions: small smooth vector functions of a few scalar inputs, the building blocks of every
 // constraint and cost of an OCP (partially separable structure, as in LANCELOT/ifopt: derivatives stay small).
 // AdElement<Derived, NI, NO, NN> turns one templated `compute(const S* in, S* out)` into exact values, Jacobians
-// (forward AD) and weighted Hessians (forward-over-forward AD) with Eigen's AutoDiffScalar, fixed sizes,
-// no heap allocation. NN <= NI: only the FIRST NN inputs may appear nonlinearly; the remaining NI - NN inputs
+// (forward AD, Eigen's AutoDiffScalar with fixed sizes, no heap allocation) and weighted Hessians
+// (forward-over-reverse AD on a small thread-local tape, reverse_ad.hpp; the tape's buffers grow once and are
+// reused). evalHessianForward() keeps the nested forward-over-forward AutoDiffScalar Hessian as a cross-check. NN <= NI: only the FIRST NN inputs may appear nonlinearly; the remaining NI - NN inputs
 // must enter linearly and never multiply each other (e.g. forces and accelerations in the inverse dynamics),
 // so their Hessian block is zero and the outer AD level runs over NN directions only. The finite-difference
 // tests of every element check this declaration too.
 #include <unsupported/Eigen/AutoDiff>
+
+#include "planner/reverse_ad.hpp"
 
 #include <Eigen/Core>
 #include <string>
@@ -55,6 +58,13 @@ class AdElement : public Element {
   }
 
   void evalHessian(const double* in, const double* w, double* hess) const override {
+    rad::TapeVar y[NO];
+    rad::record<Derived, NI, NO>(derived(), in, y);
+    rad::hessianFromTape<NI, NN>(y, NO, w, hess);
+  }
+
+  /// The same weighted Hessian by nested forward AD (slower; for tests and benchmarks).
+  void evalHessianForward(const double* in, const double* w, double* hess) const {
     D2 x[NI];
     for (int i = 0; i < NI; ++i) {
       x[i].value() = D1(in[i], NI, i);

@@ -168,23 +168,35 @@ void Ocp::addCost(const std::string& name, std::shared_ptr<const Element> elemen
   cost_terms_.push_back(std::move(inst));
 }
 
-void Ocp::analyze(Instance& inst, std::map<std::pair<int, int>, int>& jac_map,
-                  std::map<std::pair<int, int>, int>& hess_map, bool constraint) {
-  const Element& e = *inst.element;
+const Ocp::Pattern& Ocp::pattern(const Element& e, std::map<const Element*, Pattern>& cache) {
+  auto found = cache.find(&e);
+  if (found != cache.end()) return found->second;
   const int ni = e.numInputs(), no = e.numOutputs();
   // Structural pattern from the union of two random evaluation points (accidental zeros are improbable).
+  // It depends on the element only, so it is computed once per Element object and shared by its instances.
   std::mt19937 rng(12345u + static_cast<unsigned>(ni * 131 + no));
   std::uniform_real_distribution<double> U(0.3, 1.1);
   std::vector<double> in(ni), out(no), jac(no * ni), w(no), hess(ni * ni);
-  std::vector<char> jnz(no * ni, 0), hnz(ni * ni, 0);
+  Pattern p;
+  p.jnz.assign(no * ni, 0);
+  p.hnz.assign(ni * ni, 0);
   for (int trial = 0; trial < 2; ++trial) {
     for (auto& v : in) v = U(rng) * (trial ? -1.0 : 1.0);
     for (auto& v : w) v = U(rng);
     e.evalJacobian(in.data(), out.data(), jac.data());
-    for (int i = 0; i < no * ni; ++i) jnz[i] |= (jac[i] != 0.0);
+    for (int i = 0; i < no * ni; ++i) p.jnz[i] |= (jac[i] != 0.0);
     e.evalHessian(in.data(), w.data(), hess.data());
-    for (int i = 0; i < ni * ni; ++i) hnz[i] |= (hess[i] != 0.0);
+    for (int i = 0; i < ni * ni; ++i) p.hnz[i] |= (hess[i] != 0.0);
   }
+  return cache.emplace(&e, std::move(p)).first->second;
+}
+
+void Ocp::analyze(Instance& inst, const Pattern& p, std::map<std::pair<int, int>, int>& jac_map,
+                  std::map<std::pair<int, int>, int>& hess_map, bool constraint) {
+  const Element& e = *inst.element;
+  const int ni = e.numInputs(), no = e.numOutputs();
+  const std::vector<char>& jnz = p.jnz;
+  const std::vector<char>& hnz = p.hnz;
   if (constraint) {
     inst.jac_slot.assign(no * ni, -1);
     for (int j = 0; j < no; ++j)
@@ -215,14 +227,15 @@ void Ocp::finalize() {
   if (finalized_) return;
   sizeVectors();
   std::map<std::pair<int, int>, int> jac_map, hess_map;
+  std::map<const Element*, Pattern> patterns;
   std::size_t max_in = 1, max_out = 1;
   for (auto& t : constraint_terms_) {
-    analyze(t, jac_map, hess_map, true);
+    analyze(t, pattern(*t.element, patterns), jac_map, hess_map, true);
     max_in = std::max(max_in, t.in.size());
     max_out = std::max(max_out, t.out_rows.size());
   }
   for (auto& t : cost_terms_) {
-    analyze(t, jac_map, hess_map, false);
+    analyze(t, pattern(*t.element, patterns), jac_map, hess_map, false);
     max_in = std::max(max_in, t.in.size());
     max_out = std::max<std::size_t>(max_out, t.element->numOutputs());
   }

@@ -117,8 +117,12 @@ class Ocp {
   };
   const Var& var(const std::string& name) const;
   void checkNode(const Var& v, int k) const;
-  void analyze(Instance& inst, std::map<std::pair<int, int>, int>& jac_map, std::map<std::pair<int, int>, int>& hess_map,
-               bool constraint);
+  struct Pattern {
+    std::vector<char> jnz, hnz;  // structurally nonzero Jacobian (NO x NI) and Hessian (NI x NI) entries
+  };
+  static const Pattern& pattern(const Element& e, std::map<const Element*, Pattern>& cache);
+  void analyze(Instance& inst, const Pattern& p, std::map<std::pair<int, int>, int>& jac_map,
+               std::map<std::pair<int, int>, int>& hess_map, bool constraint);
 
   int N_;
   int nx_ = 0;

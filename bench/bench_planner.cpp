@@ -1,0 +1,138 @@
+// Offline planner: cold solve time and iterations of both jump primitives, and the cost of the NLP
+// evaluations Ipopt asks for (constraint Jacobian, Lagrangian Hessian) and of one element's derivatives.
+//   ./build/bench/bench_planner --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// "Cold": the OCP is built from the configuration (structure analysis included) and solved from the default
+// initial guess, nothing is reused between repetitions. Counters: iterations, ipopt_s (Ipopt's own wall time),
+// ms_per_iter (CPU per Ipopt iteration, build excluded), solved (1/0).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <random>
+
+#include "model/template_params.hpp"
+#include "planner/jump_problem.hpp"
+#include "planner/template_elements.hpp"
+
+namespace {
+
+using namespace centaur;
+using namespace centaur::planner;
+
+void solveCold(benchmark::State& state, const std::string& primitive) {
+  const JumpConfig cfg = loadJumpConfig(primitive, "", {});
+  int iterations = 0;
+  double ipopt_s = 0.0;
+  bool solved = true;
+  for (auto _ : state) {
+    const JumpProblem problem(cfg);
+    const SolveResult r = problem.solve(false);
+    iterations = r.info.iterations;
+    ipopt_s = r.info.solve_time_s;
+    solved = solved && r.info.solved();
+    benchmark::DoNotOptimize(r.z.data());
+  }
+  state.counters["iterations"] = iterations;
+  state.counters["ipopt_s"] = ipopt_s;
+  state.counters["ms_per_iter"] = 1e3 * ipopt_s / std::max(1, iterations);
+  state.counters["solved"] = solved ? 1 : 0;
+}
+
+void BM_SquatJumpCold(benchmark::State& state) { solveCold(state, "squat-jump"); }
+void BM_HalfSquatJumpCold(benchmark::State& state) { solveCold(state, "half-squat-jump"); }
+BENCHMARK(BM_SquatJumpCold)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HalfSquatJumpCold)->Unit(benchmark::kMillisecond);
+
+void BM_BuildSquatJump(benchmark::State& state) {
+  const JumpConfig cfg = loadJumpConfig("squat-jump", "", {});
+  for (auto _ : state) {
+    const JumpProblem problem(cfg);
+    benchmark::DoNotOptimize(&problem);
+  }
+}
+BENCHMARK(BM_BuildSquatJump)->Unit(benchmark::kMillisecond);
+
+// Assembled NLP derivatives of the squat jump at a perturbed initial guess.
+struct NlpPoint {
+  JumpProblem problem;
+  Eigen::VectorXd z, lambda;
+  NlpPoint() : problem(loadJumpConfig("squat-jump", "", {})) {
+    const Ocp& ocp = problem.ocp();
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    z = ocp.guess();
+    for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * U(rng) * ocp.scale()[i];
+    lambda.resize(ocp.numConstraints());
+    for (int j = 0; j < lambda.size(); ++j) lambda[j] = U(rng);
+  }
+};
+
+void BM_NlpHessian(benchmark::State& state) {
+  static const NlpPoint p;
+  const Ocp& ocp = p.problem.ocp();
+  std::vector<double> h(ocp.hessianNonzeros());
+  for (auto _ : state) {
+    ocp.hessian(p.z.data(), 0.7, p.lambda.data(), h.data());
+    benchmark::DoNotOptimize(h.data());
+  }
+}
+BENCHMARK(BM_NlpHessian)->Unit(benchmark::kMicrosecond);
+
+void BM_NlpJacobian(benchmark::State& state) {
+  static const NlpPoint p;
+  const Ocp& ocp = p.problem.ocp();
+  std::vector<double> j(ocp.jacobianNonzeros());
+  for (auto _ : state) {
+    ocp.jacobian(p.z.data(), j.data());
+    benchmark::DoNotOptimize(j.data());
+  }
+}
+BENCHMARK(BM_NlpJacobian)->Unit(benchmark::kMicrosecond);
+
+void BM_NlpConstraintsAndGradient(benchmark::State& state) {
+  static const NlpPoint p;
+  const Ocp& ocp = p.problem.ocp();
+  std::vector<double> g(ocp.numConstraints()), grad(ocp.numVariables());
+  for (auto _ : state) {
+    ocp.constraints(p.z.data(), g.data());
+    ocp.gradient(p.z.data(), grad.data());
+    benchmark::DoNotOptimize(g.data());
+    benchmark::DoNotOptimize(grad.data());
+  }
+}
+BENCHMARK(BM_NlpConstraintsAndGradient)->Unit(benchmark::kMicrosecond);
+
+// One foot-dynamics element (25 inputs, 9 outputs, 13 nonlinear): the largest element of the OCP.
+struct FootPoint {
+  FootDynamicsElement e{model::templatePreset("centauro"), 0, 1000.0};
+  double x[25], w[9];
+  FootPoint() {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    for (double& v : x) v = U(rng);
+    for (double& v : w) v = U(rng);
+  }
+};
+
+void BM_FootDynamicsJacobian(benchmark::State& state) {
+  const FootPoint p;
+  double out[9], jac[9 * 25];
+  for (auto _ : state) {
+    p.e.evalJacobian(p.x, out, jac);
+    benchmark::DoNotOptimize(jac);
+  }
+}
+BENCHMARK(BM_FootDynamicsJacobian);
+
+void BM_FootDynamicsHessian(benchmark::State& state) {
+  const FootPoint p;
+  double hess[25 * 25];
+  for (auto _ : state) {
+    p.e.evalHessian(p.x, p.w, hess);
+    benchmark::DoNotOptimize(hess);
+  }
+}
+BENCHMARK(BM_FootDynamicsHessian);
+
+}  // namespace
+
+BENCHMARK_MAIN();

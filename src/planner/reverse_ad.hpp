@@ -1,0 +1,252 @@
+#pragma once
+// Second-order AD for small fixed-size element functions: forward-over-reverse on a tiny tape.
+//
+// `TapeVar` is a scalar that records every elementary operation (value, first and second partials w.r.t. its
+// one or two operands) on a thread-local tape while the templated element code runs with doubles underneath.
+// The weighted Hessian sum_j w_j d^2 out_j / dx^2 then needs two sweeps over the tape:
+//   1. forward: tangents dot_v (NN directions = the nonlinear inputs) of every node;
+//   2. reverse: adjoints bar_v (scalar) and their directional derivatives bardot_v (NN) seeded with w;
+// bardot of input b is row b of the Hessian restricted to the NN nonlinear columns (all rows at once).
+// Cost ~ (2 NN + small) flops per tape node, instead of ~ NI * NN per operation with nested forward AD.
+// Constants never enter the tape; nodes that do not depend on a nonlinear input carry no tangent.
+#include <Eigen/Core>
+
+#include <cmath>
+#include <vector>
+
+namespace centaur::planner::rad {
+
+/// One tape node v = f(a, b) (b < 0: unary; a < 0 as well: an independent input).
+struct TapeNode {
+  int a, b;
+  double da, db;          // df/da, df/db
+  double daa, dab, dbb;   // second partials
+  bool curved;            // any second partial nonzero
+};
+
+struct Tape {
+  std::vector<TapeNode> nodes;
+  std::vector<double> values;
+  int push(double v, int a, double da, int b, double db, double daa, double dab, double dbb, bool curved) {
+    nodes.push_back(TapeNode{a, b, da, db, daa, dab, dbb, curved});
+    values.push_back(v);
+    return static_cast<int>(nodes.size()) - 1;
+  }
+  void clear() {
+    nodes.clear();
+    values.clear();
+  }
+};
+
+/// The tape all TapeVar operations record on (one per thread).
+inline Tape& activeTape() {
+  thread_local Tape tape;
+  return tape;
+}
+
+/// A recorded scalar: its value and its tape index (-1: a constant, not recorded).
+struct TapeVar {
+  double v = 0.0;
+  int i = -1;
+  TapeVar() = default;
+  TapeVar(double x) : v(x), i(-1) {}  // NOLINT: implicit, so that S(2.0) and Eigen's casts work
+  TapeVar(double x, int idx) : v(x), i(idx) {}
+  double value() const { return v; }
+
+  TapeVar& operator+=(const TapeVar& o) { return *this = *this + o; }
+  TapeVar& operator-=(const TapeVar& o) { return *this = *this - o; }
+  TapeVar& operator*=(const TapeVar& o) { return *this = *this * o; }
+  TapeVar& operator/=(const TapeVar& o) { return *this = *this / o; }
+
+  friend TapeVar operator+(const TapeVar& x, const TapeVar& y) {
+    const double r = x.v + y.v;
+    if (x.i < 0 && y.i < 0) return TapeVar(r);
+    if (y.i < 0) return TapeVar(r, activeTape().push(r, x.i, 1.0, -1, 0.0, 0, 0, 0, false));
+    if (x.i < 0) return TapeVar(r, activeTape().push(r, y.i, 1.0, -1, 0.0, 0, 0, 0, false));
+    return TapeVar(r, activeTape().push(r, x.i, 1.0, y.i, 1.0, 0, 0, 0, false));
+  }
+  friend TapeVar operator-(const TapeVar& x, const TapeVar& y) {
+    const double r = x.v - y.v;
+    if (x.i < 0 && y.i < 0) return TapeVar(r);
+    if (y.i < 0) return TapeVar(r, activeTape().push(r, x.i, 1.0, -1, 0.0, 0, 0, 0, false));
+    if (x.i < 0) return TapeVar(r, activeTape().push(r, y.i, -1.0, -1, 0.0, 0, 0, 0, false));
+    return TapeVar(r, activeTape().push(r, x.i, 1.0, y.i, -1.0, 0, 0, 0, false));
+  }
+  friend TapeVar operator-(const TapeVar& x) {
+    if (x.i < 0) return TapeVar(-x.v);
+    return TapeVar(-x.v, activeTape().push(-x.v, x.i, -1.0, -1, 0.0, 0, 0, 0, false));
+  }
+  friend TapeVar operator+(const TapeVar& x) { return x; }
+  friend TapeVar operator*(const TapeVar& x, const TapeVar& y) {
+    const double r = x.v * y.v;
+    if (x.i < 0 && y.i < 0) return TapeVar(r);
+    if (y.i < 0) return TapeVar(r, activeTape().push(r, x.i, y.v, -1, 0.0, 0, 0, 0, false));
+    if (x.i < 0) return TapeVar(r, activeTape().push(r, y.i, x.v, -1, 0.0, 0, 0, 0, false));
+    if (x.i == y.i) return TapeVar(r, activeTape().push(r, x.i, 2.0 * x.v, -1, 0.0, 2.0, 0, 0, true));
+    return TapeVar(r, activeTape().push(r, x.i, y.v, y.i, x.v, 0.0, 1.0, 0.0, true));
+  }
+  friend TapeVar operator/(const TapeVar& x, const TapeVar& y) {
+    const double r = x.v / y.v;
+    if (x.i < 0 && y.i < 0) return TapeVar(r);
+    const double iy = 1.0 / y.v;
+    if (y.i < 0) return TapeVar(r, activeTape().push(r, x.i, iy, -1, 0.0, 0, 0, 0, false));
+    // d(x/y)/dy = -x/y^2, d2/dy2 = 2x/y^3, d2/dxdy = -1/y^2
+    if (x.i < 0) return TapeVar(r, activeTape().push(r, y.i, -r * iy, -1, 0.0, 2.0 * r * iy * iy, 0, 0, true));
+    if (x.i == y.i) return TapeVar(r);  // x / x == 1 (constant)
+    return TapeVar(r, activeTape().push(r, x.i, iy, y.i, -r * iy, 0.0, -iy * iy, 2.0 * r * iy * iy, true));
+  }
+  friend TapeVar sqrt(const TapeVar& x) {
+    const double r = std::sqrt(x.v);
+    if (x.i < 0) return TapeVar(r);
+    const double d = 0.5 / r;
+    return TapeVar(r, activeTape().push(r, x.i, d, -1, 0.0, -0.5 * d / x.v, 0, 0, true));
+  }
+  friend TapeVar sin(const TapeVar& x) {
+    const double s = std::sin(x.v), c = std::cos(x.v);
+    if (x.i < 0) return TapeVar(s);
+    return TapeVar(s, activeTape().push(s, x.i, c, -1, 0.0, -s, 0, 0, true));
+  }
+  friend TapeVar cos(const TapeVar& x) {
+    const double s = std::sin(x.v), c = std::cos(x.v);
+    if (x.i < 0) return TapeVar(c);
+    return TapeVar(c, activeTape().push(c, x.i, -s, -1, 0.0, -c, 0, 0, true));
+  }
+  friend bool operator<(const TapeVar& x, const TapeVar& y) { return x.v < y.v; }
+  friend bool operator>(const TapeVar& x, const TapeVar& y) { return x.v > y.v; }
+  friend bool operator<=(const TapeVar& x, const TapeVar& y) { return x.v <= y.v; }
+  friend bool operator>=(const TapeVar& x, const TapeVar& y) { return x.v >= y.v; }
+  friend bool operator==(const TapeVar& x, const TapeVar& y) { return x.v == y.v; }
+  friend bool operator!=(const TapeVar& x, const TapeVar& y) { return x.v != y.v; }
+};
+
+/// Scratch for the sweeps (one per thread, grows to the largest tape seen, never shrinks).
+struct SweepScratch {
+  std::vector<double> dot, bar, bardot;
+  std::vector<char> active, hasbardot;
+};
+inline SweepScratch& sweepScratch() {
+  thread_local SweepScratch s;
+  return s;
+}
+
+/// Record f (Derived::compute) at `in` on the active tape. Inputs are tape nodes 0..NI-1. Returns via `y`.
+template <class F, int NI, int NO>
+void record(const F& f, const double* in, TapeVar* y) {
+  Tape& tape = activeTape();
+  tape.clear();
+  TapeVar x[NI];
+  for (int k = 0; k < NI; ++k) x[k] = TapeVar(in[k], tape.push(in[k], -1, 0.0, -1, 0.0, 0, 0, 0, false));
+  f.compute(x, y);
+}
+
+/// Weighted Hessian of sum_j w_j y_j (the outputs recorded on the active tape), full NI x NI row-major.
+/// Only the first NN inputs may enter nonlinearly (the others' Hessian block must be zero).
+template <int NI, int NN>
+void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
+  using VecN = Eigen::Matrix<double, NN, 1>;
+  using Map = Eigen::Map<VecN>;
+  const Tape& tape = activeTape();
+  const int n = static_cast<int>(tape.nodes.size());
+  SweepScratch& s = sweepScratch();
+  if (static_cast<int>(s.bar.size()) < n) {
+    s.bar.resize(n);
+    s.active.resize(n);
+    s.hasbardot.resize(n);
+  }
+  if (static_cast<int>(s.dot.size()) < n * NN) {
+    s.dot.resize(n * NN);
+    s.bardot.resize(n * NN);
+  }
+  double* dot = s.dot.data();
+  double* bar = s.bar.data();
+  double* bardot = s.bardot.data();
+  char* active = s.active.data();
+  char* hasbd = s.hasbardot.data();
+  const TapeNode* nodes = tape.nodes.data();
+
+  // Forward: tangents in the NN nonlinear input directions.
+  for (int v = 0; v < NI; ++v) {
+    active[v] = (v < NN);
+    if (v < NN) Map(dot + v * NN) = VecN::Unit(v);
+  }
+  for (int v = NI; v < n; ++v) {
+    const TapeNode& t = nodes[v];
+    const bool aa = active[t.a], ab = t.b >= 0 && active[t.b];
+    active[v] = aa || ab;
+    if (!active[v]) continue;
+    Map d(dot + v * NN);
+    if (aa && ab) {
+      d = t.da * Map(dot + t.a * NN) + t.db * Map(dot + t.b * NN);
+    } else if (aa) {
+      d = t.da * Map(dot + t.a * NN);
+    } else {
+      d = t.db * Map(dot + t.b * NN);
+    }
+  }
+
+  // Reverse: adjoints and their tangents.
+  for (int v = 0; v < n; ++v) {
+    bar[v] = 0.0;
+    hasbd[v] = 0;
+  }
+  for (int j = 0; j < no; ++j)
+    if (y[j].i >= 0) bar[y[j].i] += w[j];
+  for (int v = n - 1; v >= NI; --v) {
+    const TapeNode& t = nodes[v];
+    const double bv = bar[v];
+    const bool bd = hasbd[v];
+    if (bv == 0.0 && !bd) continue;
+    // operand a
+    auto addTo = [&](int p, double dp, double dpa, double dpb) {
+      bar[p] += dp * bv;
+      const bool second = t.curved && bv != 0.0 &&
+                          ((dpa != 0.0 && active[t.a]) || (t.b >= 0 && dpb != 0.0 && active[t.b]));
+      if (!bd && !second) return;
+      Map out(bardot + p * NN);
+      if (!hasbd[p]) {
+        out.setZero();
+        hasbd[p] = 1;
+      }
+      if (bd) out += dp * Map(bardot + v * NN);
+      if (second) {
+        if (dpa != 0.0 && active[t.a]) out += (bv * dpa) * Map(dot + t.a * NN);
+        if (t.b >= 0 && dpb != 0.0 && active[t.b]) out += (bv * dpb) * Map(dot + t.b * NN);
+      }
+    };
+    if (t.b == t.a) {
+      // never produced (x*x is recorded as a unary square), kept for safety
+      addTo(t.a, t.da + t.db, t.daa + 2 * t.dab + t.dbb, 0.0);
+      continue;
+    }
+    addTo(t.a, t.da, t.daa, t.dab);
+    if (t.b >= 0) addTo(t.b, t.db, t.dab, t.dbb);
+  }
+
+  for (int k = 0; k < NI * NI; ++k) hess[k] = 0.0;
+  for (int b = 0; b < NI; ++b) {
+    if (!hasbd[b]) continue;
+    const double* row = bardot + b * NN;
+    for (int a = 0; a < NN; ++a) {
+      if (b < NN) {
+        hess[b * NI + a] += 0.5 * row[a];  // symmetric block: average the two computed halves
+        hess[a * NI + b] += 0.5 * row[a];
+      } else {
+        hess[b * NI + a] = row[a];
+        hess[a * NI + b] = row[a];
+      }
+    }
+  }
+}
+
+}  // namespace centaur::planner::rad
+
+namespace Eigen {
+template <>
+struct NumTraits<centaur::planner::rad::TapeVar> : NumTraits<double> {
+  using Real = centaur::planner::rad::TapeVar;
+  using NonInteger = centaur::planner::rad::TapeVar;
+  using Nested = centaur::planner::rad::TapeVar;
+  using Literal = centaur::planner::rad::TapeVar;
+  enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 1, ReadCost = 1, AddCost = 3, MulCost = 3 };
+};
+}  // namespace Eigen
