@@ -73,8 +73,9 @@ void ContactDetector::init(const RobotModel& model, const ContactDetectorParams&
   reset();
 }
 
-void ContactDetector::reset(const std::array<bool, kWheels>& in_contact) {
+void ContactDetector::reset(const std::array<bool, kWheels>& in_contact, bool quasi_static_start) {
   started_ = false;
+  quasi_static_start_ = quasi_static_start;
   contact_ = in_contact;
   count_.fill(0);
   fn_.fill(0.0);
@@ -95,10 +96,14 @@ bool ContactDetector::update(const RobotModel& model, const Eigen::Ref<const Eig
   model.massMatrix(M_);
   model.biasForces(b_);
   if (!started_) {
-    // Quasi-static start: r_0 = b_0 - S' tau_0; I_0 such that K (p_0 - p_0 - I_0) = r_0.
+    // Quasi-static start: r_0 = b_0 - S' tau_0 (else r_0 = 0); I_0 such that K (p_0 - p_0 - I_0) = r_0.
     p0_.noalias() = M_ * v;
-    r_ = b_;
-    r_.tail(n_) -= tau;
+    if (quasi_static_start_) {
+      r_ = b_;
+      r_.tail(n_) -= tau;
+    } else {
+      r_.setZero();
+    }
     I_ = -r_ / K;
     started_ = true;
   } else {

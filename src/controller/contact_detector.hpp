@@ -8,8 +8,9 @@
 //    Discretely (period dt, the caller's): C' v - g = Mdot v - b with b = C v + g from RobotModel and
 //    Mdot v dt ~ (M_k - M_{k-1}) v_k, so
 //      I_k = I_{k-1} + dt (S' tau_k - b_k + r_{k-1}) + (M_k - M_{k-1}) v_k,    r_k = K (M_k v_k - p_0 - I_k).
-//    Start: the first update() assumes a quasi-static robot and sets r_0 = b_0 - S' tau_0 (torque residual
-//    with zero acceleration), so a robot that starts standing is detected in stance from the first tick.
+//    Start: by default the first update() assumes a quasi-static robot and sets r_0 = b_0 - S' tau_0 (torque
+//    residual with zero acceleration), so a robot that starts standing is detected in stance from the first
+//    tick; reset(..., false) starts at r_0 = 0 instead (e.g. a robot that starts in the air).
 // 2. Per wheel k: the rows of r of its leg's joints (hip_yaw_k .. j_wheel_k) are J_k,leg' F_k (legs are
 //    separate chains), so F_k = pinv(J_k,leg') r_leg = (J_k,leg J_k,leg')^-1 J_k,leg r_leg (W, the force of
 //    the ground ON the wheel), J_k the Jacobian of the wheel's material point at its contact point
@@ -68,8 +69,10 @@ class ContactDetector {
 
   /// Resolves frames and joints in the model and sizes every workspace (allocates). Throws InputError.
   void init(const RobotModel& model, const ContactDetectorParams& params = ContactDetectorParams());
-  /// Restart the observer at the next update() (quasi-static start) with the given contact states.
-  void reset(const std::array<bool, kWheels>& in_contact = {true, true, true, true});
+  /// Restart the observer at the next update() with the given contact states; quasi_static_start: r_0 =
+  /// b_0 - S' tau_0 (robot at rest), else r_0 = 0 (no external force, e.g. in the air).
+  void reset(const std::array<bool, kWheels>& in_contact = {true, true, true, true},
+             bool quasi_static_start = true);
   /// Surface normal of wheel k (W, unit; default e_z), used for the contact point and f_n.
   void setNormal(int k, const Eigen::Vector3d& n);
 
@@ -88,7 +91,7 @@ class ContactDetector {
 
  private:
   ContactDetectorParams params_;
-  bool initialized_ = false, started_ = false;
+  bool initialized_ = false, started_ = false, quasi_static_start_ = true;
   int nv_ = 0, n_ = 0;
   std::array<int, kWheels> body_{}, centre_{};
   std::array<std::vector<int>, kWheels> dofs_;  // velocity indices (6 + joint) of each leg's joints

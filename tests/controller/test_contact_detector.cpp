@@ -156,6 +156,7 @@ TEST_F(ContactDetectorTest, MovingFreeFloatingRobotUnderAKnownWheelForce) {
   VectorXd b(nv), tau(n_), rhs(nv);
   const int body3 = model_->frameId("wheel_3"), centre3 = model_->frameId("wheel_centre_3");
   const double h = 1e-4;
+  det_.reset({false, false, false, false}, false);  // in the air: r_0 = 0, no contact
   const VectorXd home = model_->homeJoints();
   double max_err = 0.0, max_other = 0.0;
   for (int step = 0; step <= 3000; ++step) {

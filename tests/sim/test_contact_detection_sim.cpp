@@ -7,7 +7,8 @@
 // stays inside the triangle of the other three) is lifted 6 cm by its leg and put down again.
 // Checked against the simulator's ground-truth wheel forces: lift-off and touchdown are detected within
 // 5 ms of the ground-truth normal force crossing the detector's thresholds, no other transition happens,
-// and the estimated normal forces agree with the ground truth in steady stance.
+// and the estimated normal forces agree with the ground truth in steady stance. Second test: the robot
+// dropped from 3 cm, every wheel's touchdown detected within 5 ms.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,8 +34,7 @@ constexpr double kLiftStart = 0.3, kRamp = 0.15, kLowerStart = 0.8, kEnd = 1.3;
 
 class LiftController final : public Controller {
  public:
-  explicit LiftController(const std::string& mjcf)
-      : standing_(mjcf, noFeedforward()), model_(mjcf) {
+  LiftController(const std::string& mjcf, bool lift) : standing_(mjcf, noFeedforward()), model_(mjcf), lift_(lift) {
     estimator_.init(mjcf);
     detector_.init(model_);
     distribution_.init(model_);
@@ -94,7 +94,15 @@ class LiftController final : public Controller {
     double a = 0.0;  // lift fraction, smooth ramps
     if (t >= kLiftStart && t < kLowerStart) a = ramp((t - kLiftStart) / kRamp);
     if (t >= kLowerStart) a = 1.0 - ramp((t - kLowerStart) / kRamp);
-    for (int j : leg_) command.q_ref[j] += a * dq_lift_[j];
+    if (lift_) {
+      for (int j : leg_) command.q_ref[j] += a * dq_lift_[j];
+    }
+  }
+
+  /// Start in the air at a known base position: estimator from there, detector with no contact and r_0 = 0.
+  void startInAir(const Vector3d& w_p_base) {
+    estimator_.reset(w_p_base);
+    detector_.reset({false, false, false, false}, false);
   }
 
   const ContactDetector& detector() const { return detector_; }
@@ -119,6 +127,7 @@ class LiftController final : public Controller {
   ContactDetector detector_;
   ForceDistribution distribution_;
   WheelContacts contacts_;
+  bool lift_ = true;
   std::vector<int> leg_;
   VectorXd dq_lift_, vdot_;
   bool first_ = true, ok_ = true;
@@ -130,7 +139,7 @@ class LiftController final : public Controller {
 TEST(ContactDetectionSim, LiftedAndRelandedWheelDetectedWithinFiveMilliseconds) {
   SimConfig cfg = loadSimConfig("", "", {});
   MujocoRobot robot(cfg.robot);
-  LiftController ctrl(cfg.robot.model_path);
+  LiftController ctrl(cfg.robot.model_path, true);
   const ContactDetectorParams& dp = ctrl.detector().params();
   RobotState state;
   state.resize(robot.numJoints());
@@ -214,6 +223,63 @@ TEST(ContactDetectionSim, LiftedAndRelandedWheelDetectedWithinFiveMilliseconds) 
   EXPECT_LT(max_stance_err, 0.1 * ctrl.distribution().forces().row(2).sum() / 4);
   // The robot stayed up: pelvis height and attitude.
   EXPECT_GT(robot.basePosition().z(), 0.6);
+  EXPECT_GT((robot.baseOrientation() * Vector3d::UnitZ()).z(), std::cos(3.0 * M_PI / 180.0));
+}
+
+TEST(ContactDetectionSim, DroppedRobotTouchdownOfEveryWheelDetectedWithinFiveMilliseconds) {
+  // CENTAURO released 3 cm above the ground in its home posture; the controller knows the start pose and
+  // that no wheel touches; the detector starts with r_0 = 0. Each wheel's first touchdown is detected
+  // within 5 ms of the true normal force exceeding on_threshold (the impact is sharp: ~1 kN at once); the
+  // robot bounces (ground truth through the same hysteresis shows it): no invented transition.
+  SimConfig cfg = loadSimConfig("", "", {});
+  MujocoRobot robot(cfg.robot);
+  robot.data()->qpos[2] += 0.03;  // free joint first: qpos[0..2] = pelvis position
+  mj_forward(robot.model(), robot.data());
+  LiftController ctrl(cfg.robot.model_path, false);
+  const double on = ctrl.detector().params().on_threshold;
+  ctrl.startInAir(robot.basePosition());
+  RobotState state;
+  state.resize(robot.numJoints());
+  JointCommand command;
+  robot.read(state);
+  ctrl.start(state, command);
+  ASSERT_FALSE(ctrl.detector().inContact(0));
+
+  Eigen::Matrix3Xd f_true(3, 4);
+  const double dt = robot.controlPeriodSeconds();
+  double t_touch[4] = {-1, -1, -1, -1}, t_on[4] = {-1, -1, -1, -1}, t_det[4] = {-1, -1, -1, -1};
+  int transitions[4] = {0, 0, 0, 0}, gt_transitions[4] = {0, 0, 0, 0};
+  bool prev[4] = {false, false, false, false}, gt[4] = {false, false, false, false};
+  const double off = ctrl.detector().params().off_threshold;
+  for (int i = 0; i < static_cast<int>(std::lround(0.4 / dt)); ++i) {
+    robot.controlPeriod(ctrl, state, command);
+    robot.contactForces(f_true);
+    for (int k = 0; k < 4; ++k) {
+      if (t_touch[k] < 0 && f_true(2, k) > 0.0) t_touch[k] = state.t;
+      if (t_on[k] < 0 && f_true(2, k) > on) t_on[k] = state.t;
+      // ground truth through the same hysteresis (no debounce): real bounces
+      if (gt[k] ? f_true(2, k) < off : f_true(2, k) > on) {
+        gt[k] = !gt[k];
+        ++gt_transitions[k];
+      }
+      const bool c = ctrl.detector().inContact(k);
+      if (t_det[k] < 0 && c) t_det[k] = state.t;
+      if (c != prev[k]) ++transitions[k];
+      prev[k] = c;
+    }
+  }
+  EXPECT_TRUE(ctrl.ok());
+  for (int k = 0; k < 4; ++k) {
+    std::printf("wheel %d: true touch %.4f s, above %.0f N %.4f s; detected %.4f s; transitions %d (true %d)\n",
+                k + 1, t_touch[k], on, t_on[k], t_det[k], transitions[k], gt_transitions[k]);
+    ASSERT_GT(t_touch[k], 0.05) << "wheel " << k + 1 << " fell ~3 cm first";
+    ASSERT_GT(t_det[k], 0.0) << "wheel " << k + 1;
+    EXPECT_GE(t_det[k], t_touch[k] - 1e-9) << "wheel " << k + 1;
+    EXPECT_LE(t_det[k], t_on[k] + 0.005 + 1e-9) << "wheel " << k + 1;
+    EXPECT_TRUE(ctrl.detector().inContact(k)) << "wheel " << k + 1;
+    // Bounces: the detector may miss a short one (low-pass + debounce) but never invents one.
+    EXPECT_LE(transitions[k], gt_transitions[k]) << "wheel " << k + 1;
+  }
   EXPECT_GT((robot.baseOrientation() * Vector3d::UnitZ()).z(), std::cos(3.0 * M_PI / 180.0));
 }
 
