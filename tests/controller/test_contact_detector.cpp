@@ -17,6 +17,7 @@
 
 #include "controller/contact_detector.hpp"
 #include "common/error.hpp"
+#include "common/yaml_reader.hpp"
 #include "controller/force_distribution.hpp"
 
 using namespace centaur;
@@ -201,6 +202,27 @@ TEST_F(ContactDetectorTest, MovingFreeFloatingRobotUnderAKnownWheelForce) {
   EXPECT_LT(max_other, 0.05 * F_ext.norm());
   EXPECT_TRUE(det_.inContact(2));
   EXPECT_FALSE(det_.inContact(0) || det_.inContact(1) || det_.inContact(3));
+}
+
+TEST(ContactDetectorParams, DocumentedDefaultsAreTheDefaultsAndRangesAreEnforced) {
+  const YAML::Node doc = YAML::Load(ContactDetectorParams::defaultsYaml());
+  YamlReader all(doc["contact_detector"], "defaults", "contact_detector");
+  ContactDetectorParams q;
+  q.observer_gain = 1.0;
+  q.on_debounce = 7;
+  q.read(all);
+  EXPECT_NO_THROW(all.finish());
+  const ContactDetectorParams d;
+  EXPECT_EQ(q.observer_gain, d.observer_gain);
+  EXPECT_EQ(q.on_threshold, d.on_threshold);
+  EXPECT_EQ(q.off_threshold, d.off_threshold);
+  EXPECT_EQ(q.on_debounce, d.on_debounce);
+  EXPECT_EQ(q.off_debounce, d.off_debounce);
+  EXPECT_EQ(q.wheel_radius, d.wheel_radius);
+  const YAML::Node bad = YAML::Load("{off_threshold: 80.0, on_threshold: 60.0}");  // on must exceed off
+  YamlReader rb(bad, "cfg.yaml", "contact_detector");
+  ContactDetectorParams b;
+  EXPECT_THROW(b.read(rb), InputError);
 }
 
 TEST_F(ContactDetectorTest, InvalidInputIsIgnoredAndUpdateNeverAllocates) {

@@ -14,6 +14,7 @@
 #include <Eigen/SVD>
 
 #include "common/error.hpp"
+#include "common/yaml_reader.hpp"
 #include "controller/force_distribution.hpp"
 
 using namespace centaur;
@@ -238,6 +239,28 @@ TEST_F(ForceDistributionTest, InvalidInputFailsAndKeepsTheLastGoodOutput) {
   ForceDistributionParams p;
   p.wheel_bodies[2] = "no_such_wheel";
   EXPECT_THROW(uninit.init(*model_, p), InputError);
+}
+
+TEST(ForceDistributionParams, DocumentedDefaultsAreTheDefaultsAndRangesAreEnforced) {
+  const YAML::Node doc = YAML::Load(ForceDistributionParams::defaultsYaml());
+  YamlReader all(doc["force_distribution"], "defaults", "force_distribution");
+  ForceDistributionParams q;
+  q.friction = 0.1;  // overwritten by the documented default
+  q.dynamics_weight = 3.0;
+  q.read(all);
+  EXPECT_NO_THROW(all.finish());
+  const ForceDistributionParams d;
+  EXPECT_EQ(q.friction, d.friction);
+  EXPECT_EQ(q.wheel_radius, d.wheel_radius);
+  EXPECT_EQ(q.min_normal_force, d.min_normal_force);
+  EXPECT_EQ(q.max_normal_force, d.max_normal_force);
+  EXPECT_EQ(q.tracking_weight, d.tracking_weight);
+  EXPECT_EQ(q.regularization, d.regularization);
+  EXPECT_EQ(q.dynamics_weight, d.dynamics_weight);
+  const YAML::Node bad = YAML::Load("{friction: 7.0}");
+  YamlReader rb(bad, "cfg.yaml", "force_distribution");
+  ForceDistributionParams b;
+  EXPECT_THROW(b.read(rb), InputError);
 }
 
 TEST_F(ForceDistributionTest, ComputeNeverAllocates) {
