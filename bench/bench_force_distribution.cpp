@@ -51,6 +51,34 @@ BENCHMARK(BM_ForceDistribution3Stance);
 void BM_ForceDistribution4StanceRelaxed(benchmark::State& st) { runDistribution(st, 10.0, 4); }
 BENCHMARK(BM_ForceDistribution4StanceRelaxed);
 
+// Worst case for the warm start: every call alternates the stance set (4 / 3 wheels) and a desired force
+// that is inside / outside the friction pyramids, so the active set changes at every call.
+void BM_ForceDistributionAlternating(benchmark::State& st) {
+  centaur::RobotModel model(kModel);
+  homeState(model);
+  centaur::ForceDistribution fd;
+  fd.init(model);
+  const Eigen::VectorXd vdot = Eigen::VectorXd::Zero(model.nv());
+  centaur::ForceDistribution::Forces Fd[2];
+  Fd[0].setZero();
+  Fd[0].row(2).setConstant(model.totalMass() * 9.81 / 4);
+  Fd[1] = Fd[0];
+  Fd[1].row(0) << 200.0, 200.0, -200.0, -200.0;  // squeeze: consistent, beyond mu * normal at the rear
+  centaur::WheelContacts c[2];
+  c[1].stance[3] = false;
+  int bad = 0, i = 0, iterations = 0;
+  for (auto _ : st) {
+    const auto s = fd.compute(model, vdot, Fd[i & 1], c[(i >> 1) & 1]);
+    bad += s == centaur::ForceDistributionStatus::kFailed;
+    iterations += fd.iterations();
+    ++i;
+    benchmark::DoNotOptimize(fd.tauFeedforward().data());
+  }
+  st.counters["failed"] = bad;
+  st.counters["qp_iterations_mean"] = i > 0 ? static_cast<double>(iterations) / i : 0.0;
+}
+BENCHMARK(BM_ForceDistributionAlternating);
+
 void BM_ContactDetectorUpdate(benchmark::State& st) {
   centaur::RobotModel model(kModel);
   homeState(model);
