@@ -133,6 +133,17 @@ void BM_FootDynamicsHessian(benchmark::State& state) {
 }
 BENCHMARK(BM_FootDynamicsHessian);
 
+// The same Hessian by nested forward AD (the previous method), for comparison.
+void BM_FootDynamicsHessianNestedForward(benchmark::State& state) {
+  const FootPoint p;
+  double hess[25 * 25];
+  for (auto _ : state) {
+    p.e.evalHessianForward(p.x, p.w, hess);
+    benchmark::DoNotOptimize(hess);
+  }
+}
+BENCHMARK(BM_FootDynamicsHessianNestedForward);
+
 }  // namespace
 
 BENCHMARK_MAIN();
