@@ -4,6 +4,8 @@
 // flight and touchdown; update() never allocates.
 #include <gtest/gtest.h>
 
+#include "support/allocation_counter.hpp"
+
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -19,7 +21,6 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 
 namespace {
-std::atomic<long> g_allocations{0};
 const std::string kModel = std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml";
 constexpr double kHomeZ = 0.64085 + 0.078;  // wheel-centre depth at home + wheel radius (MODEL.md)
 
@@ -42,13 +43,6 @@ RobotState measure(const Truth& truth, double t) {
 }
 }  // namespace
 
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 struct BaseEstimatorTest : public ::testing::Test {
   RobotModel model{kModel};
@@ -165,13 +159,13 @@ TEST_F(BaseEstimatorTest, FlightIsBallisticAndTouchdownAnchorsTheWheels) {
 TEST_F(BaseEstimatorTest, UpdateDoesNotAllocate) {
   RobotState s = measure(truth, 0.0);
   est.update(s, all);
-  const long before = g_allocations.load();
+  const long before = centaur_test::heapAllocations();
   const bool some[4] = {true, false, true, false};
   for (int k = 1; k < 10; ++k) {
     s.t = 0.001 * k;
     est.update(s, k < 4 ? all : (k < 7 ? none : some));
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(centaur_test::heapAllocations() - before, 0);
 }
 
 TEST(BaseEstimatorContactPoint, LowestRimPointForTiltedWheels) {

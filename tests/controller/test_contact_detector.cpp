@@ -6,6 +6,8 @@
 // (the C'v term matters), invalid input, and update() never allocates.
 #include <gtest/gtest.h>
 
+#include "support/allocation_counter.hpp"
+
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -25,26 +27,9 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 
 namespace {
-std::atomic<long> g_allocations{0};
 const std::string kModel = std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml";
 }  // namespace
 
-// Counting global operator new (free() in the replaced delete is the matching deallocator of malloc).
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -244,11 +229,11 @@ TEST_F(ContactDetectorTest, InvalidInputIsIgnoredAndUpdateNeverAllocates) {
   VectorXd tau_lift = tau_stand_;
   tau_lift.noalias() += J_[0].rightCols(n_).transpose() * F_stand_.col(0);
   bool ok = true;
-  const long before = g_allocations.load();
+  const long before = centaur_test::heapAllocations();
   for (int i = 0; i < 1000; ++i) {  // 1000 ticks, wheel 1 lifting and landing every 10
     ok = det_.update(*model_, (i / 10) % 2 == 0 ? tau_lift : tau_stand_, 0.001) && ok;
   }
-  const long after = g_allocations.load();
+  const long after = centaur_test::heapAllocations();
   EXPECT_TRUE(ok);
   EXPECT_EQ(after - before, 0);
 }

@@ -5,6 +5,8 @@
 // infeasible demands are relaxed gracefully, a wall normal, invalid input, and compute() never allocates.
 #include <gtest/gtest.h>
 
+#include "support/allocation_counter.hpp"
+
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -23,26 +25,9 @@ using Eigen::VectorXd;
 using Status = ForceDistributionStatus;
 
 namespace {
-std::atomic<long> g_allocations{0};
 const std::string kModel = std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml";
 }  // namespace
 
-// Counting global operator new (free() in the replaced delete is the matching deallocator of malloc).
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -272,7 +257,7 @@ TEST_F(ForceDistributionTest, ComputeNeverAllocates) {
   fast[0] = 10.0;
   Status s[4];
   int counts[3] = {0, 0, 0};
-  const long before = g_allocations.load();
+  const long before = centaur_test::heapAllocations();
   for (int i = 0; i < 1000; ++i) {  // 1000 ticks cycling through 4 wheels, 3 wheels, relaxed, 4 wheels
     s[0] = fd_.compute(*model_, vdot_, Fd, c);
     s[1] = fd_.compute(*model_, vdot_, Fd, three);
@@ -280,7 +265,7 @@ TEST_F(ForceDistributionTest, ComputeNeverAllocates) {
     s[3] = fd_.compute(*model_, vdot_, Fd, c);
     for (Status x : s) ++counts[static_cast<int>(x)];
   }
-  const long after = g_allocations.load();
+  const long after = centaur_test::heapAllocations();
   EXPECT_EQ(after - before, 0);
   EXPECT_EQ(counts[static_cast<int>(Status::kOk)], 3000);
   EXPECT_EQ(counts[static_cast<int>(Status::kRelaxed)], 1000);

@@ -3,6 +3,8 @@
 // operator new).
 #include <gtest/gtest.h>
 
+#include "support/allocation_counter.hpp"
+
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -11,23 +13,8 @@
 #include "model/robot_model.hpp"
 
 namespace {
-std::atomic<long> g_allocations{0};
 }
 
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 TEST(RobotModelAllocation, UpdateAndQueriesDoNotAllocate) {
   centaur::RobotModel model(std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml");
@@ -42,7 +29,7 @@ TEST(RobotModelAllocation, UpdateAndQueriesDoNotAllocate) {
   ASSERT_GE(f, 0);
   ASSERT_GE(s, 0);
   double sink = 0;
-  const long before = g_allocations.load();
+  const long before = centaur_test::heapAllocations();
   for (int k = 0; k < 3; ++k) {
     q[7] += 0.01;
     model.update(q, v);
@@ -63,11 +50,11 @@ TEST(RobotModelAllocation, UpdateAndQueriesDoNotAllocate) {
     sink += model.comVelocity()[0] + model.comBiasAcceleration()[0];
     sink += model.centroidalMomentum()[0] + model.centroidalMomentumBias()[0];
   }
-  const long after = g_allocations.load();
+  const long after = centaur_test::heapAllocations();
   EXPECT_EQ(after - before, 0);
   EXPECT_TRUE(std::isfinite(sink));
   // sanity: the counter does count
   double* volatile probe = new double[4];
   delete[] probe;
-  EXPECT_GT(g_allocations.load(), after);
+  EXPECT_GT(centaur_test::heapAllocations(), after);
 }
