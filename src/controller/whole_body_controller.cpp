@@ -1,0 +1,266 @@
+#include "controller/whole_body_controller.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "common/error.hpp"
+#include "common/yaml_reader.hpp"
+#include "controller/robot_tasks.hpp"
+#include "controller/task_angular_momentum.hpp"
+#include "controller/task_cartesian.hpp"
+#include "controller/task_pelvis_angular_velocity.hpp"
+#include "controller/task_postural.hpp"
+
+namespace centaur {
+
+const char* toString(WholeBodyStatus status) {
+  switch (status) {
+    case WholeBodyStatus::kNotStarted: return "not_started";
+    case WholeBodyStatus::kOk: return "ok";
+    case WholeBodyStatus::kSafeInvalidInput: return "safe_invalid_input";
+    case WholeBodyStatus::kSafeQpFailed: return "safe_qp_failed";
+  }
+  return "unknown";
+}
+
+namespace {
+bool contains(const std::string& s, const char* part) { return s.find(part) != std::string::npos; }
+
+// Same joint groups as the standing controller (StandingParams documents them).
+JointGains gainsFor(const std::string& name, const StandingParams& p) {
+  if (contains(name, "hip_yaw") || contains(name, "hip_pitch") || contains(name, "knee_pitch")) return p.leg;
+  if (contains(name, "ankle_pitch")) return p.ankle_pitch;
+  if (contains(name, "ankle_yaw")) return p.ankle_yaw;
+  if (contains(name, "wheel")) return p.wheel;
+  if (contains(name, "torso")) return p.torso;
+  if (name.rfind("j_arm", 0) == 0) {
+    const char last = name.back();
+    return (last >= '5' && last <= '7') ? p.wrist : p.arm;
+  }
+  return p.other;
+}
+
+template <class T>
+std::shared_ptr<T> findTask(const LoadedStack& s, const std::string& name) {
+  auto it = s.tasks.find(name);
+  return it == s.tasks.end() ? nullptr : std::dynamic_pointer_cast<T>(it->second);
+}
+}  // namespace
+
+WholeBodyController::WholeBodyController(const std::string& mjcf_path, const WholeBodyParams& params)
+    : params_(params),
+      model_meas_(std::make_unique<RobotModel>(mjcf_path)),
+      model_ik_(std::make_unique<RobotModel>(mjcf_path)) {
+  if (!(params_.dt > 0.0 && params_.dt <= 0.01)) throw InputError("whole-body controller: dt must be in (0, 0.01] s");
+  if (!(params_.safe_kd_scale >= 1.0 && params_.safe_kd_scale <= 100.0))
+    throw InputError("whole-body controller: safe_kd_scale must be in [1, 100]");
+  if (params_.stack_file.empty()) throw InputError("whole-body controller: stack_file is required");
+  n_ = model_meas_->numJoints();
+  nq_ = model_meas_->nq();
+  nv_ = model_meas_->nv();
+  estimator_.init(mjcf_path, params_.estimator);
+  detector_.init(*model_meas_, params_.detector);
+  force_.init(*model_meas_, params_.force);
+  registerRobotTasks(registry_, *model_ik_, params_.dt);
+  stack_ = loadStack(loadYamlFile(params_.stack_file), params_.stack_file, registry_);
+  hqp_.configure(stack_.stack, nv_);
+  for (int k = 0; k < 4; ++k) feet_[k] = findTask<CartesianTask>(stack_, params_.foot_tasks[k]);
+  posture_ = findTask<PosturalTask>(stack_, params_.posture_task);
+  pelvis_ = findTask<PelvisAngularVelocityTask>(stack_, params_.pelvis_task);
+  momentum_ = findTask<AngularMomentumTask>(stack_, params_.momentum_task);
+
+  kp_.setZero(n_);
+  kd_.setZero(n_);
+  const auto& names = model_meas_->jointNames();
+  for (int i = 0; i < n_; ++i) {
+    const JointGains g = gainsFor(names[static_cast<std::size_t>(i)], params_.impedance);
+    kp_[i] = g.kp;
+    kd_[i] = g.kd;
+  }
+  kd_safe_ = params_.safe_kd_scale * kd_;
+  q_home_ = model_meas_->homeJoints();
+  q_ref_.setZero(n_);
+  qd_ref_.setZero(n_);
+  x_.setZero(nv_);
+  q_ik_.setZero(nq_);
+  v_ik_.setZero(nv_);
+  vdot_d_.setZero(nv_);
+  good_q_ref_.setZero(n_);
+  good_tau_ff_.setZero(n_);
+}
+
+WholeBodyController::~WholeBodyController() = default;
+
+bool WholeBodyController::finiteInput(const RobotState& s) const noexcept {
+  return std::isfinite(s.t) && s.q.size() == n_ && s.qd.size() == n_ && s.tau.size() == n_ && s.q.allFinite() &&
+         s.qd.allFinite() && s.tau.allFinite() && s.imu_quat.coeffs().allFinite() && s.imu_omega.allFinite() &&
+         s.imu_acc.allFinite() && s.imu_quat.norm() > 0.5;
+}
+
+void WholeBodyController::start(const RobotState& state, JointCommand& command) {
+  if (state.q.size() != n_) {
+    throw InputError("whole-body controller: the robot has " + std::to_string(state.q.size()) + " joints, the model " +
+                     std::to_string(n_));
+  }
+  if (!finiteInput(state)) throw InputError("whole-body controller: the first measurement is not finite");
+  command.resize(n_);
+  const auto& names = model_meas_->jointNames();
+  for (int i = 0; i < n_; ++i) {
+    if (contains(names[static_cast<std::size_t>(i)], "wheel")) q_home_[i] = state.q[i];  // wheels keep their angle
+  }
+  detector_.reset();
+  contacts_ = WheelContacts{};
+  q_ref_ = state.q;
+  qd_ref_.setZero();
+  counters_ = WholeBodyCounters{};
+  // First estimate and model updates, then hold the feet where they are.
+  const bool all[4] = {true, true, true, true};
+  estimator_.update(state, all);
+  model_meas_->update(estimator_.q(), estimator_.v());
+  q_ik_ = estimator_.q();
+  v_ik_.setZero();
+  model_ik_->update(q_ik_, v_ik_);
+  holdCurrentReferences();
+  if (posture_) posture_->setReference(q_home_);
+  // gravity compensation of the start posture as the first "last good" feed-forward
+  const bool ok_fd = force_.compute(*model_meas_, vdot_d_, F_d_, contacts_) != ForceDistributionStatus::kFailed;
+  good_tau_ff_ = ok_fd ? force_.tauFeedforward() : Eigen::VectorXd::Zero(n_);
+  good_q_ref_ = q_ref_;
+  status_ = WholeBodyStatus::kOk;
+  resume_pending_ = false;
+  tick(state, command);
+}
+
+void WholeBodyController::holdCurrentReferences() noexcept {
+  for (auto& f : feet_) {
+    if (f) f->holdCurrent();
+  }
+  for (auto& [name, task] : stack_.tasks) {
+    (void)name;
+    if (auto* c = dynamic_cast<CartesianTask*>(task.get())) c->holdCurrent();
+  }
+}
+
+void WholeBodyController::setFootReferences(const Eigen::Matrix<double, 3, 4>& b_p_wheel,
+                                            const Eigen::Matrix<double, 3, 4>& b_v_wheel) {
+  for (int k = 0; k < 4; ++k) {
+    if (!feet_[k]) continue;
+    feet_[k]->setReference(b_p_wheel.col(k));
+    Eigen::Matrix<double, 6, 1> v = Eigen::Matrix<double, 6, 1>::Zero();
+    v.head<3>() = b_v_wheel.col(k);
+    feet_[k]->setVelocityReference(v);
+  }
+}
+
+void WholeBodyController::setPlannedForces(const Forces& F_d, bool use_default) {
+  F_d_ = F_d;
+  default_forces_ = use_default;
+}
+
+void WholeBodyController::setPostureReference(const Eigen::Ref<const Eigen::VectorXd>& q_d) {
+  if (posture_) posture_->setReference(q_d);
+}
+
+void WholeBodyController::setPelvisAngularVelocity(const Eigen::Vector3d& w_omega_d) {
+  if (pelvis_) pelvis_->setReference(w_omega_d);
+}
+
+void WholeBodyController::setAngularMomentum(const Eigen::Vector3d& h_ang_d) {
+  if (momentum_) momentum_->setReference(h_ang_d);
+}
+
+void WholeBodyController::writeSafe(JointCommand& command) noexcept {
+  command.q_ref = good_q_ref_;
+  command.qd_ref.setZero();
+  command.tau_ff = good_tau_ff_;
+  command.kp = kp_;
+  command.kd = kd_safe_;
+}
+
+void WholeBodyController::enterSafe(WholeBodyStatus why, JointCommand& command) noexcept {
+  if (!inSafeMode()) status_ = why;
+  ++counters_.safe_ticks;
+  writeSafe(command);
+}
+
+void WholeBodyController::tick(const RobotState& state, JointCommand& command) noexcept {
+  ++counters_.ticks;
+  if (status_ == WholeBodyStatus::kNotStarted) return;
+  if (!finiteInput(state)) {
+    ++counters_.invalid_inputs;
+    enterSafe(WholeBodyStatus::kSafeInvalidInput, command);
+    return;
+  }
+  if (inSafeMode() && !resume_pending_) {
+    enterSafe(status_, command);
+    return;
+  }
+  // 2-3. estimate, measured model, contact detection
+  bool stance[4];
+  for (int k = 0; k < 4; ++k) stance[k] = contacts_.stance[k];
+  estimator_.update(state, stance);
+  if (!estimator_.q().allFinite() || !estimator_.v().allFinite()) {
+    ++counters_.invalid_inputs;
+    enterSafe(WholeBodyStatus::kSafeInvalidInput, command);
+    return;
+  }
+  model_meas_->update(estimator_.q(), estimator_.v());
+  if (params_.use_contact_detector && detector_.update(*model_meas_, state.tau, params_.dt)) {
+    contacts_.stance = detector_.inContact();
+  }
+  if (resume_pending_) {  // leave safe mode: restart the IK from the measured posture
+    q_ref_ = state.q;
+    qd_ref_.setZero();
+  }
+  // 4. IK model at [estimated base, q_ref]
+  q_ik_.head<7>() = estimator_.q().head<7>();
+  q_ik_.tail(n_) = q_ref_;
+  v_ik_.head<6>() = estimator_.v().head<6>();
+  v_ik_.tail(n_) = qd_ref_;
+  model_ik_->update(q_ik_, v_ik_);
+  if (resume_pending_) {
+    holdCurrentReferences();
+    resume_pending_ = false;
+    status_ = WholeBodyStatus::kOk;
+  }
+  // 5. HQP
+  const auto t0 = std::chrono::steady_clock::now();
+  hqp_.update();
+  qp_status_ = hqp_.solve(x_);
+  qp_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (qp_status_ != QpStatus::kOptimal || !x_.allFinite()) {
+    ++counters_.qp_failures;
+    enterSafe(WholeBodyStatus::kSafeQpFailed, command);
+    return;
+  }
+  // 6. integrate
+  qd_ref_ = x_.tail(n_);
+  q_ref_ += params_.dt * qd_ref_;
+  // 7. force distribution on the measured state
+  if (default_forces_) {
+    int ns = 0;
+    for (bool s : contacts_.stance) ns += s ? 1 : 0;
+    F_d_.setZero();
+    if (ns > 0) {
+      const double fz = -model_meas_->totalMass() * model_meas_->gravity().z() / ns;
+      for (int k = 0; k < 4; ++k) F_d_(2, k) = contacts_.stance[k] ? fz : 0.0;
+    }
+  }
+  const ForceDistributionStatus fs = force_.compute(*model_meas_, vdot_d_, F_d_, contacts_);
+  if (fs == ForceDistributionStatus::kFailed || !force_.tauFeedforward().allFinite()) {
+    ++counters_.force_failures;
+  } else {
+    if (fs == ForceDistributionStatus::kRelaxed) ++counters_.force_relaxed;
+    good_tau_ff_ = force_.tauFeedforward();
+  }
+  // 8. command
+  good_q_ref_ = q_ref_;
+  command.q_ref = q_ref_;
+  command.qd_ref = qd_ref_;
+  command.tau_ff = good_tau_ff_;
+  command.kp = kp_;
+  command.kd = kd_;
+  status_ = WholeBodyStatus::kOk;
+}
+
+}  // namespace centaur
