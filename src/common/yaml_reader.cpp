@@ -120,6 +120,29 @@ void YamlReader::get(const std::string& key, std::vector<double>& value, double 
   value = out;
 }
 
+void YamlReader::getPoints(const std::string& key, Eigen::Vector3d* points, int count, double lo, double hi,
+                           const std::string& what) {
+  if (!has(key)) return;
+  used_.insert(key);
+  const YAML::Node n = node_[key];
+  const std::string expect =
+      "expected " + std::to_string(count) + " " + what + " [x, y, z], each coordinate in " + rangeText(lo, hi);
+  if (!n.IsSequence() || static_cast<int>(n.size()) != count) fail(key, expect);
+  for (int i = 0; i < count; ++i) {
+    if (!n[i].IsSequence() || n[i].size() != 3) fail(key, expect);
+    for (int a = 0; a < 3; ++a) {
+      double v = 0.0;
+      try {
+        v = n[i][a].as<double>();
+      } catch (const YAML::Exception&) {
+        fail(key, expect);
+      }
+      if (!(v >= lo && v <= hi)) fail(key, "point " + std::to_string(i) + " outside " + rangeText(lo, hi));
+      points[i][a] = v;
+    }
+  }
+}
+
 YamlReader YamlReader::child(const std::string& key) {
   if (has(key)) used_.insert(key);
   return YamlReader(has(key) ? node_[key] : YAML::Node(), file_, full(key));

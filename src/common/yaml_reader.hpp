@@ -31,6 +31,10 @@ class YamlReader {
   /// Variable-length vector of numbers, each in [lo, hi].
   void get(const std::string& key, std::vector<double>& value, double lo, double hi);
 
+  /// A list of exactly `count` points [x, y, z], each coordinate in [lo, hi]; `what` describes the list in
+  /// messages (e.g. "points in the waist frame (FL, FR, RL, RR)").
+  void getPoints(const std::string& key, Eigen::Vector3d* points, int count, double lo, double hi, const std::string& what);
+
   /// Sub-mapping reader ("a.b"). The key is marked consumed. Missing key -> empty reader.
   YamlReader child(const std::string& key);
   /// The raw node of a key (marked consumed), for sequences of mappings.

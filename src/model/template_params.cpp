@@ -65,23 +65,7 @@ TemplateParams readTemplateParams(YamlReader r) {
   if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P.foot_inertia).eigenvalues().minCoeff() < 0.0) {
     r.fail("foot_inertia", "must be positive semi-definite ([ixx, iyy, izz, ixy, ixz, iyz], kg m^2)");
   }
-  if (r.has("hip_offsets")) {
-    const YAML::Node h = r.raw("hip_offsets");
-    if (!h.IsSequence() || h.size() != 4) r.fail("hip_offsets", "expected 4 points [x, y, z] (FL, FR, RL, RR), each in [-2, 2] m");
-    for (int i = 0; i < 4; ++i) {
-      if (!h[i].IsSequence() || h[i].size() != 3) r.fail("hip_offsets", "expected 4 points [x, y, z], each in [-2, 2] m");
-      for (int a = 0; a < 3; ++a) {
-        double v = 0;
-        try {
-          v = h[i][a].as<double>();
-        } catch (const YAML::Exception&) {
-          r.fail("hip_offsets", "expected numbers in [-2, 2] m");
-        }
-        if (!(v >= -2.0 && v <= 2.0)) r.fail("hip_offsets", "coordinate outside [-2, 2] m");
-        P.hip[i][a] = v;
-      }
-    }
-  }
+  r.getPoints("hip_offsets", P.hip.data(), 4, -2.0, 2.0, "points in the waist frame (FL, FR, RL, RR), in m,");
   r.get("gravity", P.gravity, 0.0, 100.0);
   r.finish();
   return P;

@@ -124,26 +124,9 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   h.get("dt_init", c.horizon.dt_init, c.horizon.dt_min, c.horizon.dt_max);
   h.finish();
 
-  if (r.has("feet")) {
-    const YAML::Node f = r.raw("feet");
-    if (!f.IsSequence() || f.size() != 4) r.fail("feet", "expected 4 points [x, y, z] in the waist frame (FL, FR, RL, RR), each in [-2, 2] m");
-    for (int i = 0; i < 4; ++i) {
-      if (!f[i].IsSequence() || f[i].size() != 3) r.fail("feet", "expected 4 points [x, y, z], each in [-2, 2] m");
-      for (int a = 0; a < 3; ++a) {
-        double v = 0;
-        try {
-          v = f[i][a].as<double>();
-        } catch (const YAML::Exception&) {
-          r.fail("feet", "expected numbers in [-2, 2] m");
-        }
-        if (!(v >= -2.0 && v <= 2.0)) r.fail("feet", "coordinate outside [-2, 2] m");
-        c.feet[i][a] = v;
-      }
-    }
-  } else {
-    c.feet = {Eigen::Vector3d(0.35, 0.35, -0.6408), Eigen::Vector3d(0.35, -0.35, -0.6408),
+  c.feet = {Eigen::Vector3d(0.35, 0.35, -0.6408), Eigen::Vector3d(0.35, -0.35, -0.6408),
               Eigen::Vector3d(-0.35, 0.35, -0.6408), Eigen::Vector3d(-0.35, -0.35, -0.6408)};
-  }
+  r.getPoints("feet", c.feet.data(), 4, -2.0, 2.0, "foot points in the waist frame (FL, FR, RL, RR), in m,");
   r.get("wheel_radius", c.wheel_radius, 0.0, 1.0);
 
   auto w = r.child("workspace");
