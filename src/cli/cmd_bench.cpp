@@ -1,17 +1,25 @@
 // centaur bench planner [--repeat N] [--json]
 // Cold solves of both jump primitives with the embedded defaults; reports the median wall and CPU solve time,
 // iterations and time per iteration. With --json the last stdout line is one JSON object.
+// centaur bench tick [--ticks N] [--stack FILE] [--json]
+// The whole-body controller's tick (HQP IK + contact detection + force distribution) timed in closed loop on
+// CENTAURO standing in MuJoCo (default stack config/stack_stand.yaml): median / p99 / max of tick() and of its
+// HQP update+solve, in microseconds (steady clock).
 // (Timings are measured, never asserted in tests; record them in docs/benchmarks.md.)
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 
 #include "cli/command.hpp"
 #include "common/error.hpp"
+#include "controller/whole_body_controller.hpp"
 #include "planner/jump_problem.hpp"
+#include "sim/mujoco_robot.hpp"
+#include "sim/sim_config.hpp"
 
 namespace centaur::cli {
 namespace {
@@ -19,6 +27,8 @@ namespace {
 struct BenchArgs {
   std::string target;
   int repeat = 3;
+  int ticks = 5000;
+  std::string stack;
   bool json = false;
 };
 
@@ -60,6 +70,71 @@ nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
   return j;
 }
 
+double percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  const std::size_t i = static_cast<std::size_t>(std::min<double>(v.size() - 1, std::ceil(p * v.size()) - 1));
+  return v[i];
+}
+
+// Times every tick() (and the HQP part of it) of the wrapped controller into preallocated buffers.
+class TimedController final : public Controller {
+ public:
+  TimedController(WholeBodyController& c, int ticks) : c_(c) {
+    tick_us_.reserve(static_cast<std::size_t>(ticks));
+    qp_us_.reserve(static_cast<std::size_t>(ticks));
+  }
+  void start(const RobotState& s, JointCommand& cmd) override { c_.start(s, cmd); }
+  void tick(const RobotState& s, JointCommand& cmd) noexcept override {
+    const auto t0 = std::chrono::steady_clock::now();
+    c_.tick(s, cmd);
+    const auto t1 = std::chrono::steady_clock::now();
+    if (tick_us_.size() < tick_us_.capacity()) {
+      tick_us_.push_back(1e6 * std::chrono::duration<double>(t1 - t0).count());
+      qp_us_.push_back(1e6 * c_.lastQpSeconds());
+    }
+  }
+  std::vector<double> tick_us_, qp_us_;
+
+ private:
+  WholeBodyController& c_;
+};
+
+nlohmann::json benchTick(const BenchArgs& a) {
+  sim::SimConfig cfg = sim::loadSimConfig("", "", {});
+  std::string stack = a.stack;
+  if (stack.empty()) {  // <source>/config/stack_stand.yaml, next to <source>/models/centauro/centauro.xml
+    const std::string model = sim::defaultModelPath();
+    stack = model.substr(0, model.size() - std::string("models/centauro/centauro.xml").size()) +
+            "config/stack_stand.yaml";
+  }
+  sim::MujocoRobot robot(cfg.robot);
+  WholeBodyParams p;
+  p.stack_file = stack;
+  p.dt = robot.controlPeriodSeconds();
+  WholeBodyController ctrl(cfg.robot.model_path, p);
+  TimedController timed(ctrl, a.ticks);
+  RobotState state;
+  state.resize(robot.numJoints());
+  JointCommand command;
+  robot.read(state);
+  timed.start(state, command);
+  const Eigen::Vector3d p0 = robot.basePosition();
+  for (int k = 0; k < a.ticks; ++k) robot.controlPeriod(timed, state, command);
+  nlohmann::json j;
+  j["target"] = "tick";
+  j["ticks"] = a.ticks;
+  j["stack"] = stack;
+  j["status"] = toString(ctrl.status());
+  j["safe_ticks"] = ctrl.counters().safe_ticks;
+  j["tick_us_median"] = median(timed.tick_us_);
+  j["tick_us_p99"] = percentile(timed.tick_us_, 0.99);
+  j["tick_us_max"] = *std::max_element(timed.tick_us_.begin(), timed.tick_us_.end());
+  j["qp_us_median"] = median(timed.qp_us_);
+  j["qp_us_p99"] = percentile(timed.qp_us_, 0.99);
+  j["pelvis_drift_m"] = (robot.basePosition() - p0).norm();
+  return j;
+}
+
 int runBench(const BenchArgs& a) {
   nlohmann::json out;
   if (a.target == "planner") {
@@ -73,15 +148,28 @@ int runBench(const BenchArgs& a) {
                    j["ms_per_iteration"].get<double>());
     }
   }
+  if (a.target == "tick") {
+    std::fprintf(stderr, "bench tick: %d ticks of the whole-body controller, CENTAURO standing in MuJoCo ...\n",
+                 a.ticks);
+    out = benchTick(a);
+    std::fprintf(stderr, "  tick median %.1f us, p99 %.1f us, max %.1f us; HQP median %.1f us, p99 %.1f us (%s)\n",
+                 out["tick_us_median"].get<double>(), out["tick_us_p99"].get<double>(),
+                 out["tick_us_max"].get<double>(), out["qp_us_median"].get<double>(),
+                 out["qp_us_p99"].get<double>(), out["status"].get<std::string>().c_str());
+  }
   if (a.json) printJsonLine(out.dump());
   return kExitOk;
 }
 
-const Registrar kBench{{"bench", "Measure performance (planner: cold solves of both jumps)", [](CLI::App& sub) {
+const Registrar kBench{{"bench", "Measure performance (planner: cold solves of both jumps; tick: whole-body controller)",
+                        [](CLI::App& sub) {
                           auto a = std::make_shared<BenchArgs>();
-                          sub.add_option("target", a->target, "what to measure: planner")
+                          sub.add_option("target", a->target, "what to measure: planner, tick")
                               ->required()
-                              ->check(CLI::IsMember({"planner"}));
+                              ->check(CLI::IsMember({"planner", "tick"}));
+                          sub.add_option("--ticks", a->ticks, "tick: control periods timed (1 ms each)")
+                              ->check(CLI::Range(10, 1000000));
+                          sub.add_option("--stack", a->stack, "tick: stack YAML (default config/stack_stand.yaml)");
                           sub.add_option("--repeat", a->repeat, "cold runs per case (median reported)")
                               ->check(CLI::Range(1, 100));
                           sub.add_flag("--json", a->json, "print a JSON object as the last line of stdout");
