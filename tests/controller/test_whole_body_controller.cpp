@@ -301,3 +301,47 @@ TEST(WholeBodyController, PostureLevelNeverWorsensTheFeet) {
   EXPECT_GT(std::abs(ca.q_ref[arm] - m.homeJoints()[arm]), 0.1);  // posture acted on the free joints
   EXPECT_LT(std::abs(cb.q_ref[arm] - m.homeJoints()[arm]), 1e-3);
 }
+
+TEST(WholeBodyController, FastStackGivesTheSameCommandsAsThePaperStack) {
+  // config/stack_stand_fast.yaml merges the feet and pelvis levels (they act on disjoint columns): the same
+  // commands, tick by tick, with moving feet, pelvis rotation and posture references.
+  RobotModel m(kModel);
+  WholeBodyParams pa = params(), pb = params(std::string(CENTAUR_SOURCE_DIR) + "/config/stack_stand_fast.yaml");
+  pa.use_contact_detector = pb.use_contact_detector = false;
+  WholeBodyController a(kModel, pa), b(kModel, pb);
+  EXPECT_EQ(a.hqp().numLevels(), 3);
+  EXPECT_EQ(b.hqp().numLevels(), 2);
+  RobotState s = homeState(m);
+  JointCommand ca, cb;
+  a.start(s, ca);
+  b.start(s, cb);
+  Eigen::Matrix<double, 3, 4> feet;
+  for (int k = 0; k < 4; ++k) {
+    Eigen::Vector3d p;
+    Eigen::Matrix3d R;
+    std::dynamic_pointer_cast<CartesianTask>(a.stack().tasks.at("wheel_" + std::to_string(k + 1)))->currentPose(p, R);
+    feet.col(k) = p + Eigen::Vector3d(0.0, 0.0, -0.02);
+  }
+  a.setFootReferences(feet);
+  b.setFootReferences(feet);
+  a.setPelvisAngularVelocity(Eigen::Vector3d(0.0, 0.1, 0.0));
+  b.setPelvisAngularVelocity(Eigen::Vector3d(0.0, 0.1, 0.0));
+  Eigen::VectorXd q_d = m.homeJoints();
+  q_d[m.jointIndex("j_arm2_2")] -= 0.3;
+  a.setPostureReference(q_d);
+  b.setPostureReference(q_d);
+  double max_dqd = 0.0, max_dx = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    s.t = 0.001 * (k + 1);
+    s.q = ca.q_ref;
+    a.tick(s, ca);
+    b.tick(s, cb);
+    ASSERT_EQ(a.status(), WholeBodyStatus::kOk);
+    ASSERT_EQ(b.status(), WholeBodyStatus::kOk);
+    max_dqd = std::max(max_dqd, (ca.qd_ref - cb.qd_ref).lpNorm<Eigen::Infinity>());
+    max_dx = std::max(max_dx, (a.solution() - b.solution()).lpNorm<Eigen::Infinity>());
+  }
+  EXPECT_LT(max_dqd, 1e-6);
+  EXPECT_LT(max_dx, 1e-6);
+  EXPECT_NEAR(a.solution()[4], 0.1, 1e-6);  // b_omega_y = 0.1 (the pelvis is level: w_R_b = I)
+}
