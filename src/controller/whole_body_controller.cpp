@@ -8,6 +8,7 @@
 #include "controller/robot_tasks.hpp"
 #include "controller/task_angular_momentum.hpp"
 #include "controller/task_cartesian.hpp"
+#include "controller/task_com.hpp"
 #include "controller/task_pelvis_angular_velocity.hpp"
 #include "controller/task_postural.hpp"
 
@@ -138,6 +139,7 @@ void WholeBodyController::holdCurrentReferences() noexcept {
   for (auto& [name, task] : stack_.tasks) {
     (void)name;
     if (auto* c = dynamic_cast<CartesianTask*>(task.get())) c->holdCurrent();
+    if (auto* c = dynamic_cast<ComTask*>(task.get())) c->holdCurrent();
   }
 }
 

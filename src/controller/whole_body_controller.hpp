@@ -15,8 +15,8 @@
 //   8. JointCommand: q_ref, qd_ref, tau_ff, kp, kd.
 // References (hooks for the replay / stabilizers): setFootReferences (pelvis -> wheel centre, base frame),
 // setPlannedForces, setBaseAcceleration, setPostureReference, setPelvisAngularVelocity, setAngularMomentum.
-// Defaults after start(): feet held where they are, posture = home (wheels: their initial angle), zero angular
-// velocity and momentum.
+// Defaults after start() (and resume()): every Cartesian task (feet) and Com task held where it is, posture = home
+// (wheels: their initial angle), zero angular velocity and momentum.
 //
 // Safe mode (latched until resume()): entered on a non-finite input (kSafeInvalidInput), a failed or non-finite
 // HQP solution (kSafeQpFailed) or a non-finite estimate (kSafeInvalidInput). While in it the command is

@@ -4,6 +4,7 @@
 // mode on NaN input, and strict priority on the robot (the posture level never worsens the feet).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "controller/robot_tasks.hpp"
 #include "controller/task_angular_momentum.hpp"
 #include "controller/task_cartesian.hpp"
+#include "controller/task_com.hpp"
 #include "controller/task_pelvis_angular_velocity.hpp"
 #include "controller/task_postural.hpp"
 #include "controller/whole_body_controller.hpp"
@@ -344,4 +346,52 @@ TEST(WholeBodyController, FastStackGivesTheSameCommandsAsThePaperStack) {
   EXPECT_LT(max_dqd, 1e-6);
   EXPECT_LT(max_dx, 1e-6);
   EXPECT_NEAR(a.solution()[4], 0.1, 1e-6);  // b_omega_y = 0.1 (the pelvis is level: w_R_b = I)
+}
+
+TEST(WholeBodyController, ComShiftWithWheelsFixedInTheWorld) {
+  // A stack with the wheels fixed in the WORLD (Cartesian base_link: world, so A has base columns) above a CoM
+  // task: asked to move the CoM 2 cm forward, the joints move, the estimator's base follows from the anchored
+  // wheels (perfect tracking q = q_ref), the CoM arrives and the wheels do not move.
+  RobotModel m(kModel);
+  const std::string file = ::testing::TempDir() + "/stack_com.yaml";
+  {
+    std::ofstream f(file);
+    f << "stack:\n  - [w1, w2, w3, w4, pelvis]\n  - [com]\n  - [posture]\n"
+         "constraints: [joint_limits, velocity_limits]\n"
+         "w1: {type: Cartesian, base_link: world, distal_link: wheel_centre_1, lambda: 20.0}\n"
+         "w2: {type: Cartesian, base_link: world, distal_link: wheel_centre_2, lambda: 20.0}\n"
+         "w3: {type: Cartesian, base_link: world, distal_link: wheel_centre_3, lambda: 20.0}\n"
+         "w4: {type: Cartesian, base_link: world, distal_link: wheel_centre_4, lambda: 20.0}\n"
+         "pelvis: {type: PelvisAngularVelocity}\n"
+         "com: {type: Com, lambda: 10.0}\n"
+         "posture: {type: Postural, lambda: 2.0, weight: 0.01}\n"
+         "joint_limits: {type: JointPositionLimits, scaling: 0.5}\nvelocity_limits: {type: JointVelocityLimits}\n";
+  }
+  WholeBodyParams p = params(file);
+  p.use_contact_detector = false;
+  WholeBodyController c(kModel, p);
+  RobotState s = homeState(m);
+  JointCommand cmd;
+  c.start(s, cmd);
+  auto com = std::dynamic_pointer_cast<ComTask>(c.stack().tasks.at("com"));
+  ASSERT_TRUE(com);
+  const Eigen::Vector3d com0 = c.ikModel().com();
+  EXPECT_LT((com->reference() - com0).norm(), 1e-12);  // held at start
+  std::array<Eigen::Vector3d, 4> wheel0;
+  for (int k = 0; k < 4; ++k) wheel0[k] = c.ikModel().framePose(m.frameId("wheel_centre_" + std::to_string(k + 1))).translation();
+  com->setReference(com0 + Eigen::Vector3d(0.02, 0.0, 0.0));
+  for (int k = 0; k < 1000; ++k) {
+    s.t = 0.001 * (k + 1);
+    s.q = cmd.q_ref;
+    c.tick(s, cmd);
+    ASSERT_EQ(c.status(), WholeBodyStatus::kOk);
+  }
+  const Eigen::Vector3d com1 = c.ikModel().com();
+  std::printf("CoM moved by %.4f %.4f %.4f m\n", com1.x() - com0.x(), com1.y() - com0.y(), com1.z() - com0.z());
+  EXPECT_NEAR(com1.x() - com0.x(), 0.02, 1e-3);
+  EXPECT_NEAR(com1.y() - com0.y(), 0.0, 1e-3);
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d w = c.ikModel().framePose(m.frameId("wheel_centre_" + std::to_string(k + 1))).translation();
+    EXPECT_LT((w - wheel0[k]).norm(), 2e-3) << "wheel " << k + 1;
+  }
 }
