@@ -395,3 +395,38 @@ TEST(WholeBodyController, ComShiftWithWheelsFixedInTheWorld) {
     EXPECT_LT((w - wheel0[k]).norm(), 2e-3) << "wheel " << k + 1;
   }
 }
+
+TEST(WholeBodyController, FailedQpEntersSafeModeAndResumeRecovers) {
+  // A non-finite reference reaches the HQP (invalid input -> failed solve): safe mode kSafeQpFailed with the
+  // last good posture, zero velocity and raised damping; after a valid reference and resume() it is nominal.
+  RobotModel m(kModel);
+  WholeBodyController c(kModel, params());
+  RobotState s = homeState(m);
+  JointCommand cmd;
+  c.start(s, cmd);
+  for (int k = 0; k < 5; ++k) {
+    s.t += 0.001;
+    c.tick(s, cmd);
+  }
+  const Eigen::VectorXd q_good = cmd.q_ref, kd_nominal = cmd.kd;
+  c.setPelvisAngularVelocity(Eigen::Vector3d(std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0));
+  s.t += 0.001;
+  c.tick(s, cmd);
+  EXPECT_EQ(c.status(), WholeBodyStatus::kSafeQpFailed);
+  EXPECT_EQ(c.counters().qp_failures, 1);
+  EXPECT_NE(c.lastQpStatus(), QpStatus::kOptimal);
+  for (const Eigen::VectorXd* v : {&cmd.q_ref, &cmd.qd_ref, &cmd.tau_ff, &cmd.kd}) EXPECT_TRUE(v->allFinite());
+  EXPECT_EQ((cmd.q_ref - q_good).norm(), 0.0);
+  EXPECT_EQ(cmd.qd_ref.norm(), 0.0);
+  EXPECT_GT(cmd.kd.sum(), 2.0 * kd_nominal.sum());
+  c.setPelvisAngularVelocity(Eigen::Vector3d::Zero());
+  s.t += 0.001;
+  c.tick(s, cmd);
+  EXPECT_TRUE(c.inSafeMode());  // latched
+  c.resume();
+  s.t += 0.001;
+  c.tick(s, cmd);
+  EXPECT_EQ(c.status(), WholeBodyStatus::kOk);
+  EXPECT_EQ(c.lastQpStatus(), QpStatus::kOptimal);
+  EXPECT_EQ((cmd.kd - kd_nominal).norm(), 0.0);
+}
