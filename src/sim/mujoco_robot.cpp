@@ -127,26 +127,12 @@ void MujocoRobot::reset() {
   sampleMeasurement();
   const RobotState& first = delay_[head_];
   for (auto& s : delay_) {
-    if (&s == &first) continue;
-    s.t = first.t;
-    s.q = first.q;
-    s.qd = first.qd;
-    s.tau = first.tau;
-    s.imu_quat = first.imu_quat;
-    s.imu_omega = first.imu_omega;
-    s.imu_acc = first.imu_acc;
+    if (&s != &first) s = first;  // equal sizes: Eigen copies without allocating
   }
 }
 
 void MujocoRobot::read(RobotState& state) const {
-  const RobotState& s = delay_[(head_ + 1) % delay_.size()];  // the oldest entry: latency_periods old
-  state.t = s.t;
-  state.q = s.q;
-  state.qd = s.qd;
-  state.tau = s.tau;
-  state.imu_quat = s.imu_quat;
-  state.imu_omega = s.imu_omega;
-  state.imu_acc = s.imu_acc;
+  state = delay_[(head_ + 1) % delay_.size()];  // the oldest entry: latency_periods old
 }
 
 void MujocoRobot::write(const JointCommand& c) {

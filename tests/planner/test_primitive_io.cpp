@@ -1,6 +1,8 @@
 // ctest-labels: unit
 // The HDF5 primitive database: exact round trip, append/replace, atomic writes, clear errors on bad files.
 #include <gtest/gtest.h>
+
+#include "support/temp_dir.hpp"
 #include <hdf5.h>
 #include <unistd.h>
 
@@ -23,29 +25,7 @@ namespace planner = centaur::planner;
 
 namespace {
 
-/// A fresh temporary directory, removed with its contents at the end of the test.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "centaur-io-XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> out;
-    for (const auto& e : fs::directory_iterator(path_)) out.push_back(e.path().filename().string());
-    return out;
-  }
-
- private:
-  fs::path path_;
-};
+using centaur_test::TempDir;
 
 std::string readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
