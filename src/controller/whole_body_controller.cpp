@@ -55,7 +55,8 @@ WholeBodyController::WholeBodyController(const std::string& mjcf_path, const Who
   if (!(params_.dt > 0.0 && params_.dt <= 0.01)) throw InputError("whole-body controller: dt must be in (0, 0.01] s");
   if (!(params_.safe_kd_scale >= 1.0 && params_.safe_kd_scale <= 100.0))
     throw InputError("whole-body controller: safe_kd_scale must be in [1, 100]");
-  if (params_.stack_file.empty()) throw InputError("whole-body controller: stack_file is required");
+  if (params_.stack_file.empty() && params_.stack_yaml.empty())
+    throw InputError("whole-body controller: stack_file or stack_yaml is required");
   n_ = model_meas_->numJoints();
   nq_ = model_meas_->nq();
   nv_ = model_meas_->nv();
@@ -63,7 +64,11 @@ WholeBodyController::WholeBodyController(const std::string& mjcf_path, const Who
   detector_.init(*model_meas_, params_.detector);
   force_.init(*model_meas_, params_.force);
   registerRobotTasks(registry_, *model_ik_, params_.dt);
-  stack_ = loadStack(loadYamlFile(params_.stack_file), params_.stack_file, registry_);
+  if (!params_.stack_file.empty()) {
+    stack_ = loadStack(loadYamlFile(params_.stack_file), params_.stack_file, registry_);
+  } else {
+    stack_ = loadStack(loadYamlString(params_.stack_yaml, "<stack>"), "<stack>", registry_);
+  }
   hqp_.configure(stack_.stack, nv_);
   for (int k = 0; k < 4; ++k) feet_[k] = findTask<CartesianTask>(stack_, params_.foot_tasks[k]);
   posture_ = findTask<PosturalTask>(stack_, params_.posture_task);

@@ -48,7 +48,8 @@ class PelvisAngularVelocityTask;
 class AngularMomentumTask;
 
 struct WholeBodyParams {
-  std::string stack_file;            ///< YAML stack (e.g. config/stack_stand.yaml); required
+  std::string stack_file;            ///< YAML stack file (e.g. config/stack_stand.yaml), or
+  std::string stack_yaml;            ///< the stack as YAML text (used when stack_file is empty)
   double dt = 0.001;                 ///< [s] control period (IK integration, observer step)
   StandingParams impedance;          ///< joint gains per group (and wheel_radius / friction are NOT used here)
   double safe_kd_scale = 3.0;        ///< [-] kd multiplier in safe mode, [1, 100]
