@@ -17,6 +17,20 @@ void checkFrame(const RobotModel& model, YamlReader& r, const std::string& key, 
   if (allow_world && frame == "world") return;
   if (model.frameId(frame) < 0) r.fail(key, "unknown frame '" + frame + "'");
 }
+// Optional `joints:` list of joint names -> indices (empty if the key is absent).
+std::vector<int> readJointList(const RobotModel& model, YamlReader& r) {
+  std::vector<int> joints;
+  if (!r.has("joints")) return joints;
+  const YAML::Node list = r.raw("joints");
+  if (!list.IsSequence() || list.size() == 0) r.fail("joints", "a non-empty list of joint names");
+  for (const auto& j : list) {
+    const std::string jn = j.as<std::string>();
+    const int idx = model.jointIndex(jn);
+    if (idx < 0) r.fail("joints", "unknown joint '" + jn + "'");
+    joints.push_back(idx);
+  }
+  return joints;
+}
 }  // namespace
 
 void registerRobotTasks(TaskRegistry& reg, const RobotModel& model, double dt) {
@@ -38,21 +52,10 @@ void registerRobotTasks(TaskRegistry& reg, const RobotModel& model, double dt) {
     return std::make_shared<PelvisAngularVelocityTask>(name, model, base);
   });
   reg.addTask("Postural", [&model](const std::string& name, YamlReader& r) -> TaskPtr {
-    std::vector<int> joints;
-    if (r.has("joints")) {
-      const YAML::Node list = r.raw("joints");
-      if (!list.IsSequence() || list.size() == 0) r.fail("joints", "a non-empty list of joint names");
-      for (const auto& j : list) {
-        const std::string jn = j.as<std::string>();
-        const int idx = model.jointIndex(jn);
-        if (idx < 0) r.fail("joints", "unknown joint '" + jn + "'");
-        joints.push_back(idx);
-      }
-    }
-    return std::make_shared<PosturalTask>(name, model, joints);
+    return std::make_shared<PosturalTask>(name, model, readJointList(model, r));
   });
-  reg.addTask("AngularMomentum", [&model](const std::string& name, YamlReader&) -> TaskPtr {
-    return std::make_shared<AngularMomentumTask>(name, model);
+  reg.addTask("AngularMomentum", [&model](const std::string& name, YamlReader& r) -> TaskPtr {
+    return std::make_shared<AngularMomentumTask>(name, model, readJointList(model, r));
   });
   reg.addTask("Com", [&model](const std::string& name, YamlReader&) -> TaskPtr {
     return std::make_shared<ComTask>(name, model);

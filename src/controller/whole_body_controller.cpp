@@ -176,6 +176,14 @@ void WholeBodyController::setAngularMomentum(const Eigen::Vector3d& h_ang_d) {
   if (momentum_) momentum_->setReference(h_ang_d);
 }
 
+void WholeBodyController::setContactNormals(const std::array<Eigen::Vector3d, 4>& w_normal) noexcept {
+  for (int k = 0; k < 4; ++k) {
+    if (!w_normal[k].allFinite() || w_normal[k].norm() < 0.5) continue;
+    contacts_.normal[k] = w_normal[k].normalized();
+    detector_.setNormal(k, contacts_.normal[k]);
+  }
+}
+
 void WholeBodyController::writeSafe(JointCommand& command) noexcept {
   command.q_ref = good_q_ref_;
   command.qd_ref.setZero();
@@ -214,7 +222,10 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
   model_meas_->update(estimator_.q(), estimator_.v());
   if (params_.use_contact_detector && detector_.update(*model_meas_, state.tau, params_.dt)) {
     contacts_.stance = detector_.inContact();
+  } else if (!params_.use_contact_detector) {
+    contacts_.stance = {true, true, true, true};
   }
+  for (int k = 0; k < 4; ++k) contacts_.stance[k] = contacts_.stance[k] && stance_mask_[k];
   if (resume_pending_) {  // leave safe mode: restart the IK from the measured posture
     q_ref_ = state.q;
     qd_ref_.setZero();

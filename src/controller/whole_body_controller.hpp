@@ -103,6 +103,13 @@ class WholeBodyController final : public Controller {
   void setPostureReference(const Eigen::Ref<const Eigen::VectorXd>& q_d);
   void setPelvisAngularVelocity(const Eigen::Vector3d& w_omega_d);
   void setAngularMomentum(const Eigen::Vector3d& h_ang_d);
+  /// Unit surface normal (W) of each wheel's (current or next) contact: used by the contact detector and the
+  /// force distribution (default +z, flat ground).
+  void setContactNormals(const std::array<Eigen::Vector3d, 4>& w_normal) noexcept;
+  /// Which wheels MAY be in stance (default all): the stance set used by the estimator and the force
+  /// distribution is (detected contact AND allowed). The replay uses it to reconcile the plan with the
+  /// detector (a wheel planned in flight is not pushed on even if the detector still sees it in contact).
+  void setStanceMask(const std::array<bool, 4>& allowed) noexcept { stance_mask_ = allowed; }
   /// Leave safe mode at the next tick with a valid input: q_ref := measured q, feet held where they are.
   void resume() { resume_pending_ = true; }
 
@@ -146,6 +153,7 @@ class WholeBodyController final : public Controller {
   Eigen::VectorXd q_ref_, qd_ref_, x_, q_ik_, v_ik_, vdot_d_;
   Eigen::VectorXd good_q_ref_, good_tau_ff_;
   WheelContacts contacts_;
+  std::array<bool, 4> stance_mask_ = {true, true, true, true};
   Forces F_d_ = Forces::Zero();
   bool default_forces_ = true;
   bool resume_pending_ = false;

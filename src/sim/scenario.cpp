@@ -3,7 +3,7 @@
 namespace centaur::sim {
 
 std::vector<Scenario>& scenarios() {
-  static std::vector<Scenario> registry{standScenario()};
+  static std::vector<Scenario> registry{standScenario(), squatJumpScenario(), halfSquatJumpScenario()};
   return registry;
 }
 

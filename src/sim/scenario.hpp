@@ -58,7 +58,8 @@ class RunObserver {
   virtual void observe(const MujocoRobot& robot, const RobotState& state, const JointCommand& command) = 0;
   /// Extra summary values (name -> number), added to RunSummary::extra and the JSON line.
   virtual std::map<std::string, double> summary() const { return {}; }
-  /// "" keeps the runner's outcome ("success"/"fall"); anything else replaces it (e.g. "no_wall_contact").
+  /// "" keeps the runner's outcome ("success"/"fall"); anything else replaces "success" (e.g.
+  /// "no_wall_contact"); a fall stays a fall.
   virtual std::string outcome() const { return ""; }
 };
 
@@ -72,7 +73,7 @@ struct Scenario {
   std::function<std::unique_ptr<RunObserver>(ScenarioContext&)> make_observer = nullptr;
 };
 
-/// All scenarios (the built-in `stand` first, then every ScenarioRegistrar in registration order).
+/// All scenarios (the built-in `stand`, `squat-jump`, `half-squat-jump` first, then every ScenarioRegistrar in registration order).
 std::vector<Scenario>& scenarios();
 /// nullptr if unknown.
 const Scenario* findScenario(const std::string& name);
@@ -83,5 +84,8 @@ struct ScenarioRegistrar {
 
 /// The built-in standing scenario (StandingController, defined in scenario_stand.cpp).
 Scenario standScenario();
+/// The built-in jumps (JumpController + stabilizer, scenario_jump.cpp): "squat-jump", "half-squat-jump".
+Scenario squatJumpScenario();
+Scenario halfSquatJumpScenario();
 
 }  // namespace centaur::sim

@@ -126,7 +126,7 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
   if (observer) {
     sum.extra = observer->summary();
     const std::string o = observer->outcome();
-    if (!o.empty()) sum.outcome = o;
+    if (!o.empty() && sum.outcome != "fall") sum.outcome = o;  // a fall stays a fall
   }
   if (!snapshot_done) {  // snapshot at the very end (e.g. --at duration, or the run stopped early)
     writePng(out.snapshot_path, renderer->render(robot.data()), renderer->width(), renderer->height());

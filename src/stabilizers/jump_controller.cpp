@@ -1,0 +1,111 @@
+#include "stabilizers/jump_controller.hpp"
+
+#include <algorithm>
+
+#include "common/error.hpp"
+#include "common/yaml_reader.hpp"
+
+namespace centaur {
+
+std::string JumpControllerParams::defaultsYaml() {
+  return R"(controller:
+  settle_time: 0.5          # [s] hold the first sample before the primitive starts, [0, 10]
+  early_touchdown: 0.08     # [s] contact accepted this long before a planned touch-down, [0, 1]
+  recover_time: 0.0         # [s] after the primitive, back to its first pose in this time (0: hold the end), [0, 10]
+  feedforward_acceleration: true  # planned base acceleration into the force distribution
+  friction: 0.5             # [-] mu of the force distribution's pyramid, [0.01, 5]
+  contact_on: 60.0          # [N] contact detector: touch-down threshold, (off, 1e4]
+  contact_off: 30.0         # [N] contact detector: lift-off threshold, [0, on)
+  gains:                    # joint impedance per group: kp [Nm/rad] in [0, 1e5], kd [Nm s/rad] in [0, 1e3]
+    leg: {kp: 1000.0, kd: 10.0}        # hip_yaw, hip_pitch, knee_pitch
+    ankle_pitch: {kp: 500.0, kd: 5.0}
+    ankle_yaw: {kp: 100.0, kd: 1.0}
+    wheel: {kp: 100.0, kd: 2.0}        # j_wheel_* (held at the initial angle)
+    torso: {kp: 500.0, kd: 5.0}
+    arm: {kp: 300.0, kd: 3.0}          # j_arm*_1 .. j_arm*_4
+    wrist: {kp: 50.0, kd: 0.5}         # j_arm*_5 .. j_arm*_7
+    other: {kp: 100.0, kd: 1.0}        # any other joint
+)";
+}
+
+void JumpControllerParams::read(YamlReader& r) {
+  r.get("settle_time", settle_time, 0.0, 10.0);
+  r.get("early_touchdown", early_touchdown, 0.0, 1.0);
+  r.get("recover_time", recover_time, 0.0, 10.0);
+  r.get("feedforward_acceleration", feedforward_acceleration);
+  r.get("friction", wbc.force.friction, 0.01, 5.0);
+  r.get("contact_on", wbc.detector.on_threshold, 0.0, 1e4);
+  r.get("contact_off", wbc.detector.off_threshold, 0.0, 1e4);
+  if (!(wbc.detector.off_threshold < wbc.detector.on_threshold)) r.fail("contact_off", "must be below contact_on");
+  auto g = r.child("gains");
+  StandingParams& p = wbc.impedance;
+  for (auto& [name, gains] : std::vector<std::pair<const char*, JointGains*>>{
+           {"leg", &p.leg}, {"ankle_pitch", &p.ankle_pitch}, {"ankle_yaw", &p.ankle_yaw}, {"wheel", &p.wheel},
+           {"torso", &p.torso}, {"arm", &p.arm}, {"wrist", &p.wrist}, {"other", &p.other}}) {
+    auto c = g.child(name);
+    c.get("kp", gains->kp, 0.0, 1e5);
+    c.get("kd", gains->kd, 0.0, 1e3);
+    c.finish();
+  }
+  g.finish();
+}
+
+JumpController::JumpController(const std::string& mjcf_path, const planner::Primitive& primitive,
+                               std::unique_ptr<Stabilizer> stabilizer, const JumpControllerParams& params)
+    : params_(params), replay_(primitive), stabilizer_(std::move(stabilizer)) {
+  if (!stabilizer_) throw InputError("jump controller: no stabilizer");
+  params_.wbc.stack_file.clear();
+  params_.wbc.stack_yaml = stabilizer_->stackYaml();
+  wbc_ = std::make_unique<WholeBodyController>(mjcf_path, params_.wbc);
+  vdot_.setZero(wbc_->ikModel().nv());
+  replay_.sample(0.0, first_);
+  replay_.sample(replay_.duration(), last_);
+}
+
+void JumpController::start(const RobotState& state, JointCommand& command) {
+  t0_ = state.t;
+  t_rel_ = -params_.settle_time;
+  const RobotModel& m = wbc_->ikModel();
+  Eigen::VectorXd q_home = m.homeJoints();
+  for (int i = 0; i < m.numJoints(); ++i) {
+    if (m.jointNames()[static_cast<std::size_t>(i)].find("wheel") != std::string::npos) q_home[i] = state.q[i];
+  }
+  stabilizer_->start(m.jointNames(), q_home);
+  replay_.sample(t_rel_, sample_);
+  wbc_->start(state, command);  // holds the feet where they are; the first tick below sets the references
+  tick(state, command);
+}
+
+void JumpController::tick(const RobotState& state, JointCommand& command) noexcept {
+  t_rel_ = state.t - t0_ - params_.settle_time;
+  replay_.sample(t_rel_, sample_);
+  const double t_after = t_rel_ - replay_.duration();
+  if (params_.recover_time > 0.0 && t_after >= 0.0) {
+    // recovery: quintic from the last pose back to the first one, even weight split
+    const double s = std::min(1.0, t_after / params_.recover_time);
+    const double h = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+    const double dh = s < 1.0 ? 30.0 * s * s * (1.0 - s) * (1.0 - s) / params_.recover_time : 0.0;
+    sample_.b_p_wheel = last_.b_p_wheel + h * (first_.b_p_wheel - last_.b_p_wheel);
+    sample_.b_v_wheel = dh * (first_.b_p_wheel - last_.b_p_wheel);
+    wbc_->setFootReferences(sample_.b_p_wheel, sample_.b_v_wheel);
+    wbc_->setPlannedForces(sample_.w_F, true);
+  } else {
+    wbc_->setFootReferences(sample_.b_p_wheel, sample_.b_v_wheel);
+    wbc_->setPlannedForces(sample_.w_F);
+  }
+  if (params_.feedforward_acceleration) vdot_.head<6>() = sample_.vdot_base;
+  wbc_->setBaseAcceleration(vdot_);
+  wbc_->setContactNormals(sample_.w_normal);
+  std::array<bool, 4> allowed = sample_.contact;
+  for (int k = 0; k < 4; ++k) {
+    if (allowed[k]) continue;
+    for (double td : replay_.touchDowns(k)) {
+      if (t_rel_ >= td - params_.early_touchdown && t_rel_ < td) allowed[k] = true;
+    }
+  }
+  wbc_->setStanceMask(allowed);
+  stabilizer_->update(state, wbc_->params().dt, sample_.running, *wbc_);
+  wbc_->tick(state, command);
+}
+
+}  // namespace centaur

@@ -1,0 +1,77 @@
+#pragma once
+// The online stage of a jump (paper Sec. IV, Fig. 2): primitive replay + upper-body stabilizer + whole-body
+// controller (HQP IK, contact detection, force distribution), behind the Controller interface at 1 kHz.
+//
+// Timeline (robot time t, t0 = time of start()):
+//   [t0, t0 + settle_time)                 hold the primitive's first sample (the robot settles on its wheels;
+//                                          the stabilizer may prepare, e.g. the OCP arm trajectory blends in)
+//   [t0 + settle_time, + duration)         replay: every tick the sample at t - t0 - settle_time
+//   [.., + recover_time)                   recovery (if recover_time > 0): r_C goes back from the last sample to
+//                                          the first one along a quintic (zero velocity and acceleration at
+//                                          both ends), forces = the even weight split; then hold the first
+//                                          sample (the robot stands as it started). recover_time = 0: hold
+//                                          the last sample (e.g. the half-squat jump stays on the wall).
+// Per tick, before WholeBodyController::tick():
+//   setFootReferences(r_C, r_C dot)   the planned pelvis -> wheel-centre positions (first stack level),
+//   setPlannedForces(F_C)             the planned contact forces (force distribution),
+//   setBaseAcceleration([a, alpha, 0])  the planned base acceleration (force distribution),
+//   setContactNormals(n)              the planned surface of each wheel (ground +z, wall +x),
+//   setStanceMask(allowed)            contact reconciliation: a wheel may be in stance if it is planned in
+//                                     contact, or within `early_touchdown` seconds before its planned
+//                                     touch-down (early touch-down); the detector decides within that set
+//                                     (late touch-down: planned but not detected -> not in stance; late
+//                                     lift-off: detected but planned in flight -> not in stance),
+//   stabilizer->update(...)           posture / pelvis / momentum references.
+// tick() never allocates and never throws.
+#include <memory>
+#include <string>
+
+#include "controller/primitive_replay.hpp"
+#include "controller/whole_body_controller.hpp"
+#include "stabilizers/stabilizer.hpp"
+
+namespace centaur {
+
+class YamlReader;
+
+struct JumpControllerParams {
+  double settle_time = 0.5;       ///< [s] before the primitive starts, [0, 10]
+  double early_touchdown = 0.08;  ///< [s] window before a planned touch-down in which contact is accepted, [0, 1]
+  double recover_time = 0.0;      ///< [s] back to the first sample's r_C after the end (0: hold the last), [0, 10]
+  bool feedforward_acceleration = true;  ///< pass the planned base acceleration to the force distribution
+  WholeBodyParams wbc;            ///< stack_yaml is filled from the stabilizer
+  /// The documented defaults of the scenario's `controller:` section (stabilizer sections included).
+  static std::string defaultsYaml();
+  /// Read everything except the stabilizer sections (strict: finish() afterwards, by the caller).
+  void read(YamlReader& r);
+};
+
+class JumpController final : public Controller {
+ public:
+  /// Builds the whole-body controller with the stabilizer's stack. Throws InputError (bad model, stack, primitive).
+  JumpController(const std::string& mjcf_path, const planner::Primitive& primitive,
+                 std::unique_ptr<Stabilizer> stabilizer, const JumpControllerParams& params);
+
+  void start(const RobotState& state, JointCommand& command) override;
+  void tick(const RobotState& state, JointCommand& command) noexcept override;
+
+  const WholeBodyController& wholeBody() const { return *wbc_; }
+  const PrimitiveReplay& replay() const { return replay_; }
+  const Stabilizer& stabilizer() const { return *stabilizer_; }
+  const ReplaySample& lastSample() const { return sample_; }
+  /// Time since the primitive's start (negative while settling) [s].
+  double primitiveTime() const { return t_rel_; }
+  /// Primitive start time (robot time) [s].
+  double primitiveStart() const { return t0_ + params_.settle_time; }
+
+ private:
+  JumpControllerParams params_;
+  PrimitiveReplay replay_;
+  std::unique_ptr<Stabilizer> stabilizer_;
+  std::unique_ptr<WholeBodyController> wbc_;
+  ReplaySample sample_, first_, last_;
+  Eigen::VectorXd vdot_;
+  double t0_ = 0.0, t_rel_ = 0.0;
+};
+
+}  // namespace centaur

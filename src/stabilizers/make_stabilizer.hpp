@@ -1,0 +1,19 @@
+#pragma once
+// Stabilizer factory for the jump scenarios: mode "none" | "raibert" | "angmom" | "ocp".
+// Reads (and validates) the sections `raibert:`, `angmom:` and `ocp:` of the given reader whichever mode is
+// chosen, so a typo in an unused section is still an error.
+#include <memory>
+#include <string>
+
+#include "stabilizers/stabilizer.hpp"
+
+namespace centaur {
+
+class YamlReader;
+
+/// The documented defaults of the three stabilizer sections (YAML, indented by two spaces for `controller:`).
+std::string stabilizerDefaultsYaml();
+/// Throws InputError for an unknown mode or a bad key (naming it).
+std::unique_ptr<Stabilizer> makeStabilizer(const std::string& mode, YamlReader& section);
+
+}  // namespace centaur
