@@ -1,0 +1,276 @@
+// centaur compare [--out DIR] [--json] [--jobs N] [--jumps squat-jump,half-squat-jump]
+//                 [--modes none,raibert,angmom,ocp] [--set key=value]... [--primitives F.h5]
+// The paper's Fig. 4: plans the jumps once (DIR/primitives.h5, unless --primitives is given), simulates every
+// (jump, stabilizer mode) pair in-process on a thread pool (DIR/<jump>-<mode>.h5, each with its effective
+// configuration DIR/<jump>-<mode>.config.yaml), and writes DIR/compare.md, DIR/compare.json,
+// DIR/compare-pitch.csv and DIR/compare-pitch.png (IMU pitch over time, one panel per jump).
+// Exit codes: 0 every run completed (a fall is an outcome, not an error); 2 bad input (nothing written when
+// detected before the runs); 4 runtime failure (a run, planning or plotting failed; what completed is written).
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <set>
+
+#include "cli/command.hpp"
+#include "cli/compare_plot.hpp"
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "planner/jump_problem.hpp"
+#include "planner/primitive_io.hpp"
+#include "sim/compare_pitch.hpp"
+#include "sim/compare_report.hpp"
+#include "sim/compare_runner.hpp"
+#include "sim/scenario.hpp"
+#include "sim/sim_config.hpp"
+
+namespace centaur::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CompareArgs {
+  std::string out = "out/compare";
+  bool json = false;
+  int jobs = 0;
+  std::vector<std::string> jumps{"squat-jump", "half-squat-jump"};
+  std::vector<std::string> modes{"none", "raibert", "angmom", "ocp"};
+  std::vector<std::string> sets;
+  std::string primitives;  // existing primitive file; "" = plan into DIR/primitives.h5
+};
+
+std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+const sim::ScenarioOption* findOption(const sim::Scenario& s, const std::string& name) {
+  for (const auto& o : s.options) {
+    if (o.name == name) return &o;
+  }
+  return nullptr;
+}
+
+/// Everything that can be checked before anything is written; throws InputError.
+std::vector<const sim::Scenario*> validate(const CompareArgs& a) {
+  if (a.jumps.empty()) throw InputError("--jumps: give at least one jump (squat-jump, half-squat-jump)");
+  if (a.modes.empty()) throw InputError("--modes: give at least one mode (none, raibert, angmom, ocp)");
+  if (std::set<std::string>(a.jumps.begin(), a.jumps.end()).size() != a.jumps.size()) {
+    throw InputError("--jumps '" + join(a.jumps, ",") + "': a jump is listed twice");
+  }
+  if (std::set<std::string>(a.modes.begin(), a.modes.end()).size() != a.modes.size()) {
+    throw InputError("--modes '" + join(a.modes, ",") + "': a mode is listed twice");
+  }
+  std::error_code ec;
+  if (fs::exists(a.out, ec) && !fs::is_directory(a.out, ec)) {
+    throw InputError("--out " + a.out + ": exists and is not a directory");
+  }
+  std::vector<const sim::Scenario*> scenarios;
+  for (const auto& jump : a.jumps) {
+    const sim::Scenario* s = sim::findScenario(jump);
+    if (s == nullptr || findOption(*s, "primitive") == nullptr || findOption(*s, "stabilizer") == nullptr) {
+      throw InputError("--jumps: '" + jump + "' is not a jump scenario (allowed: squat-jump, half-squat-jump)");
+    }
+    const sim::ScenarioOption* stab = findOption(*s, "stabilizer");
+    for (const auto& m : a.modes) {
+      if (!stab->allowed.empty() && std::find(stab->allowed.begin(), stab->allowed.end(), m) == stab->allowed.end()) {
+        throw InputError("--modes: '" + m + "' is not a stabilizer of " + jump + " (allowed: " + join(stab->allowed) +
+                         ")");
+      }
+    }
+    sim::loadSimConfig(s->defaults_yaml, "", a.sets);  // bad --set keys/values: InputError naming them
+    if (a.primitives.empty()) {
+      planner::loadJumpConfig(jump, "", {});  // the jump can be planned
+    } else {
+      planner::readPrimitive(a.primitives, jump);  // InputError naming the file and the available names
+    }
+    scenarios.push_back(s);
+  }
+  return scenarios;
+}
+
+/// Plan every jump with its defaults into `path` (plus <stem>.<jump>.yaml); returns (name, status) pairs.
+std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std::string>& jumps,
+                                                           const std::string& path, std::vector<std::string>& files) {
+  std::vector<planner::Primitive> prims;
+  std::vector<std::pair<std::string, std::string>> status;
+  for (const auto& jump : jumps) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const planner::JumpConfig cfg = planner::loadJumpConfig(jump, "", {});
+    const planner::JumpProblem problem(cfg);
+    const planner::SolveResult result = problem.solve(false);
+    prims.push_back(problem.toPrimitive(result));
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "compare: planned %s: %s, %d iterations, %.1f s\n", jump.c_str(),
+                 result.info.status.c_str(), result.info.iterations, dt);
+    if (!result.info.solved()) {
+      std::fprintf(stderr, "compare: warning: %s did not converge; its primitive is used as it is (flagged)\n",
+                   jump.c_str());
+    }
+    status.emplace_back(jump, result.info.status);
+  }
+  planner::writePrimitives(path, prims, planner::WriteMode::Replace);
+  files.push_back(path);
+  for (const auto& p : prims) {
+    const fs::path f(path);
+    const std::string sidecar = (f.parent_path() / (f.stem().string() + "." + p.name + ".yaml")).string();
+    writeTextFileAtomic(sidecar, p.config_yaml);
+    files.push_back(sidecar);
+  }
+  return status;
+}
+
+std::string fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+int runCompare(const CompareArgs& a) {
+  const auto t_start = std::chrono::steady_clock::now();
+  const std::vector<const sim::Scenario*> scenarios = validate(a);
+  std::vector<std::string> files;
+
+  // 1. primitives
+  std::string primitives = a.primitives;
+  nlohmann::json plan_json = nlohmann::json::array();
+  if (primitives.empty()) {
+    primitives = (fs::path(a.out) / "primitives.h5").string();
+    for (const auto& [name, status] : planJumps(a.jumps, primitives, files)) {
+      plan_json.push_back({{"primitive", name}, {"status", status}});
+    }
+  }
+
+  // 2. the runs
+  struct Pair {
+    std::string jump, mode, log;
+  };
+  std::vector<Pair> pairs;
+  std::vector<sim::BatchRun> runs;
+  for (std::size_t j = 0; j < a.jumps.size(); ++j) {
+    for (const auto& mode : a.modes) {
+      Pair p{a.jumps[j], mode, (fs::path(a.out) / (a.jumps[j] + "-" + mode + ".h5")).string()};
+      sim::BatchRun r;
+      r.label = p.jump + "/" + mode;
+      r.scenario = p.jump;
+      r.options = {{"primitive", primitives}, {"stabilizer", mode}};
+      r.overrides = a.sets;
+      r.outputs.log_path = p.log;
+      // The OCP stabilizer may solve its arm OCP (Ipopt + MUMPS, not thread-safe) while setting up: one at a time.
+      if (mode == "ocp") r.exclusive_group = "ipopt";
+      runs.push_back(std::move(r));
+      pairs.push_back(std::move(p));
+    }
+  }
+  const int threads = sim::batchThreads(a.jobs, runs.size());
+  std::fprintf(stderr, "compare: %zu runs on %d thread%s\n", runs.size(), threads, threads == 1 ? "" : "s");
+  sim::BatchCallbacks cb;
+  cb.started = [&](std::size_t i) { std::fprintf(stderr, "compare: started %s\n", runs[i].label.c_str()); };
+  cb.finished = [&](std::size_t i, const sim::BatchResult& r, std::size_t done, std::size_t total) {
+    if (r.status == sim::BatchResult::Status::Completed) {
+      std::fprintf(stderr, "compare: [%zu/%zu] %s: %s, peak pitch %.2f deg, %.1f s simulated in %.1f s (x%.2f)\n",
+                   done, total, runs[i].label.c_str(), r.summary.outcome.c_str(), r.summary.peak_pitch_deg,
+                   r.summary.duration_s, r.elapsed_s, r.summary.real_time_factor);
+    } else {
+      std::fprintf(stderr, "compare: [%zu/%zu] %s FAILED: %s\n", done, total, runs[i].label.c_str(), r.error.c_str());
+    }
+  };
+  const auto t_runs = std::chrono::steady_clock::now();
+  const std::vector<sim::BatchResult> results = sim::runBatch(runs, a.jobs, cb);
+  const double runs_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_runs).count();
+  std::fprintf(stderr, "compare: %zu runs in %.1f s wall time\n", runs.size(), runs_wall);
+
+  // 3. table, pitch histories, plot
+  std::vector<sim::CompareRow> rows;
+  bool bad_input = false, failed = false;
+  std::vector<std::string> names;
+  std::vector<sim::PitchSeries> series;
+  std::vector<PitchPanel> panels;
+  for (const auto& jump : a.jumps) panels.push_back({jump, {}});
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const sim::BatchResult& r = results[i];
+    const bool ok = r.status == sim::BatchResult::Status::Completed;
+    bad_input = bad_input || r.status == sim::BatchResult::Status::BadInput;
+    failed = failed || !ok;
+    rows.push_back(sim::makeCompareRow(pairs[i].jump, pairs[i].mode, r, ok ? pairs[i].log : ""));
+    if (!ok) continue;
+    files.insert(files.end(), r.summary.files.begin(), r.summary.files.end());
+    for (const auto& f : r.summary.files) files.push_back(sim::configPathFor(f));
+    try {
+      series.push_back(sim::readLogPitch(pairs[i].log));
+    } catch (const InputError& e) {  // our own log unreadable: a runtime failure, not the user's input
+      throw RuntimeError(e.what());
+    }
+    names.push_back(runs[i].label);
+    const std::size_t panel = static_cast<std::size_t>(
+        std::find(a.jumps.begin(), a.jumps.end(), pairs[i].jump) - a.jumps.begin());
+    panels[panel].curves.push_back(
+        {static_cast<int>(names.size()) + 1, pairs[i].mode + " (" + r.summary.outcome + ")", modeColour(pairs[i].mode)});
+  }
+  const std::string md_path = (fs::path(a.out) / "compare.md").string();
+  const std::string json_path = (fs::path(a.out) / "compare.json").string();
+  const std::string csv_path = (fs::path(a.out) / "compare-pitch.csv").string();
+  const std::string png_path = (fs::path(a.out) / "compare-pitch.png").string();
+  const std::string table = sim::compareMarkdown(rows);
+  const nlohmann::json runs_json = sim::compareJson(rows);
+  writeTextFileAtomic(md_path, "# centaur compare: jumps x upper-body stabilizers\n\n" + table +
+                                   "\nPeak pitch: pelvis, ground truth. Pitch RMS: IMU pitch (ZYX pitch of "
+                                   "w_R_imu). Max torque ratio: peak |tau| / effort limit. Real-time factor: "
+                                   "simulated time / wall time of the loop.\n"
+                                   "Plot: compare-pitch.png (data: compare-pitch.csv). Logs: <jump>-<mode>.h5.\n");
+  writeTextFileAtomic(json_path, runs_json.dump(2) + "\n");
+  files.push_back(md_path);
+  files.push_back(json_path);
+  if (!series.empty()) {
+    writeTextFileAtomic(csv_path, sim::pitchCsv(names, series));
+    files.push_back(csv_path);
+    plotPitchPanels(csv_path, panels, png_path);
+    files.push_back(png_path);
+  }
+  const double total_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+
+  // 4. report
+  std::cout << table << "\n";
+  std::cout << "compare: " << runs.size() << " runs in " << fmt("%.1f", runs_wall) << " s wall time on " << threads
+            << " thread" << (threads == 1 ? "" : "s") << " (total " << fmt("%.1f", total_wall) << " s)\n";
+  for (const auto& f : files) std::cout << "wrote " << f << "\n";
+  if (a.json) {
+    nlohmann::json j;
+    j["runs"] = runs_json;
+    j["files"] = files;
+    j["wall_time_s"] = total_wall;
+    j["runs_wall_time_s"] = runs_wall;
+    j["threads"] = threads;
+    j["primitives"] = primitives;
+    j["planned"] = plan_json;
+    printJsonLine(j.dump());
+  }
+  if (bad_input) return kExitBadInput;
+  return failed ? kExitRuntime : kExitOk;
+}
+
+const Registrar kCompare{Command{
+    "compare",
+    "simulate every jump with every upper-body stabilizer and compare them (table, JSON, IMU pitch plot: Fig. 4)",
+    [](CLI::App& sub) -> std::function<int()> {
+      auto a = std::make_shared<CompareArgs>();
+      sub.add_option("--out", a->out, "output directory")->capture_default_str();
+      sub.add_flag("--json", a->json, "print one JSON object as the last line of stdout");
+      sub.add_option("--jobs", a->jobs, "runs at the same time (0 = hardware concurrency)")
+          ->check(CLI::Range(0, 256))
+          ->capture_default_str();
+      sub.add_option("--jumps", a->jumps, "comma-separated jumps")->delimiter(',')->capture_default_str();
+      sub.add_option("--modes", a->modes, "comma-separated stabilizer modes")->delimiter(',')->capture_default_str();
+      sub.add_option("--set", a->sets, "override a simulation configuration key in every run (repeatable)");
+      sub.add_option("--primitives", a->primitives, "use the primitives of this file instead of planning them")
+          ->check(CLI::ExistingFile);
+      return [a]() { return runCompare(*a); };
+    }}};
+
+}  // namespace
+}  // namespace centaur::cli

@@ -1,0 +1,108 @@
+#include "cli/compare_plot.hpp"
+
+#include <filesystem>
+#include <sstream>
+
+#include "cli/plot_primitive.hpp"  // runGnuplot, gnuplotAvailable
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+
+namespace centaur::cli {
+
+namespace {
+
+/// `s` as a gnuplot single-quoted string (the terminal is noenhanced, so only quotes need care).
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') {
+      out += "''";
+    } else if (c == '\n' || c == '\r') {
+      out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
+std::string buildScript(const std::string& csv, const std::vector<PitchPanel>& panels, const std::string& png,
+                        const PitchPlotOptions& o) {
+  const int n = static_cast<int>(panels.size());
+  // Layout in pixels, converted to screen fractions: a band for the figure title, then per panel a band for
+  // its title, the plot, and a band for the time axis label.
+  const int title_px = 50, panel_title_px = 30, axis_px = 55;
+  const int height_px = title_px + n * o.panel_height_px;
+  auto screenY = [&](int px_from_top) { return 1.0 - static_cast<double>(px_from_top) / height_px; };
+  std::ostringstream g;
+  g << "set terminal pngcairo size " << o.width_px << "," << height_px << " noenhanced font 'Sans,11'\n"
+    << "set output " << quoted(png) << "\n"
+    << "set datafile separator comma\n"
+    << "set grid xtics ytics lc rgb '#dddddd' lw 1 dt 1\n"
+    << "set xzeroaxis lt -1 lw 1 lc rgb '#888888'\n"
+    << "set key outside right top vertical Left reverse samplen 3 spacing 1.2 font ',10' box lc rgb '#bbbbbb'\n"
+    << "set lmargin at screen 0.08\nset rmargin at screen 0.76\n"
+    << "set ylabel 'pitch [deg]'\nset xlabel 'time [s]'\n"
+    << "set multiplot title " << quoted(o.title) << " font ',14'\n";
+  for (int p = 0; p < n; ++p) {
+    const PitchPanel& panel = panels[static_cast<std::size_t>(p)];
+    const int top = title_px + p * o.panel_height_px + panel_title_px;
+    const int bottom = title_px + (p + 1) * o.panel_height_px - axis_px;
+    g << "set tmargin at screen " << screenY(top) << "\nset bmargin at screen " << screenY(bottom) << "\n"
+      << "set title " << quoted(panel.title) << " font ',12'\n";
+    if (panel.curves.empty()) {
+      g << "unset key\nset label 99 'no completed run' at graph 0.5, graph 0.5 center\n"
+        << "plot [0:1] [-1:1] NaN notitle\nunset label 99\nset key\n";
+      continue;
+    }
+    g << "plot ";
+    for (std::size_t c = 0; c < panel.curves.size(); ++c) {
+      const PitchCurve& cv = panel.curves[c];
+      g << (c ? ", " : "") << quoted(csv) << " skip 1 u 1:" << cv.column << " w l lw 2 lc rgb " << quoted(cv.colour)
+        << " t " << quoted(cv.label);
+    }
+    g << "\n";
+  }
+  g << "unset multiplot\nunset output\n";
+  return g.str();
+}
+
+}  // namespace
+
+std::string modeColour(const std::string& mode) {
+  if (mode == "none") return "#d62728";
+  if (mode == "raibert") return "#1f77b4";
+  if (mode == "angmom") return "#2ca02c";
+  if (mode == "ocp") return "#ff7f0e";
+  return "#7f7f7f";
+}
+
+void plotPitchPanels(const std::string& csv_path, const std::vector<PitchPanel>& panels, const std::string& png_path,
+                     const PitchPlotOptions& options) {
+  if (panels.empty()) throw InputError("pitch plot " + png_path + ": no panels to draw");
+  for (const auto& p : panels) {
+    for (const auto& c : p.curves) {
+      if (c.column < 2) throw InputError("pitch plot " + png_path + ": curve '" + c.label + "' has column < 2");
+    }
+  }
+  ensureParentDirectory(png_path);
+  const std::string png_tmp = temporaryPathFor(png_path);
+  // Absolute paths: gnuplot runs in its own temporary directory.
+  const std::string csv_abs = std::filesystem::absolute(csv_path).string();
+  const std::string png_abs = std::filesystem::absolute(png_tmp).string();
+  try {
+    runGnuplot(buildScript(csv_abs, panels, png_abs, options));
+  } catch (...) {
+    removeFileIfExists(png_tmp);
+    throw;
+  }
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(png_tmp, ec);
+  if (ec || size < 8) {
+    removeFileIfExists(png_tmp);
+    throw RuntimeError("gnuplot did not draw " + png_path);
+  }
+  commitFile(png_tmp, png_path);
+}
+
+}  // namespace centaur::cli
