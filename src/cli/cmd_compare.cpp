@@ -209,6 +209,12 @@ int runCompare(const CompareArgs& a) {
     names.push_back(runs[i].label);
     const std::size_t panel = static_cast<std::size_t>(
         std::find(a.jumps.begin(), a.jumps.end(), pairs[i].jump) - a.jumps.begin());
+    if (!series.back().t.empty()) {
+      PitchPanel& pp = panels[panel];
+      const double t0 = series.back().t.front(), t1 = series.back().t.back();
+      pp.t_min = pp.curves.empty() ? t0 : std::min(pp.t_min, t0);
+      pp.t_max = pp.curves.empty() ? t1 : std::max(pp.t_max, t1);
+    }
     panels[panel].curves.push_back(
         {static_cast<int>(names.size()) + 1, pairs[i].mode + " (" + r.summary.outcome + ")", modeColour(pairs[i].mode)});
   }

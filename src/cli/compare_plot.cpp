@@ -31,7 +31,7 @@ std::string buildScript(const std::string& csv, const std::vector<PitchPanel>& p
   const int n = static_cast<int>(panels.size());
   // Layout in pixels, converted to screen fractions: a band for the figure title, then per panel a band for
   // its title, the plot, and a band for the time axis label.
-  const int title_px = 50, panel_title_px = 30, axis_px = 55;
+  const int title_px = 50, panel_title_px = 36, axis_px = 62;
   const int height_px = title_px + n * o.panel_height_px;
   auto screenY = [&](int px_from_top) { return 1.0 - static_cast<double>(px_from_top) / height_px; };
   std::ostringstream g;
@@ -50,6 +50,11 @@ std::string buildScript(const std::string& csv, const std::vector<PitchPanel>& p
     const int bottom = title_px + (p + 1) * o.panel_height_px - axis_px;
     g << "set tmargin at screen " << screenY(top) << "\nset bmargin at screen " << screenY(bottom) << "\n"
       << "set title " << quoted(panel.title) << " font ',12'\n";
+    if (panel.t_max > panel.t_min) {
+      g << "set xrange [" << panel.t_min << ":" << panel.t_max << "]\n";
+    } else {
+      g << "set autoscale x\n";
+    }
     if (panel.curves.empty()) {
       g << "unset key\nset label 99 'no completed run' at graph 0.5, graph 0.5 center\n"
         << "plot [0:1] [-1:1] NaN notitle\nunset label 99\nset key\n";

@@ -17,6 +17,7 @@ struct PitchCurve {
 struct PitchPanel {
   std::string title;  ///< e.g. "squat-jump"
   std::vector<PitchCurve> curves;
+  double t_min = 0.0, t_max = 0.0;  ///< [s] time axis; t_max <= t_min = autoscale
 };
 
 struct PitchPlotOptions {
