@@ -1,10 +1,12 @@
-// centaur plan squat-jump|half-squat-jump [--config F.yaml] [--set key=value]... --out F.h5 [--append] [--json]
-// Plans a lower-body primitive with the template-model OCP (Ipopt) and writes it to the primitive database.
+// centaur plan squat-jump|half-squat-jump|arm-flywheel [--config F.yaml] [--set key=value]... --out F.h5 [--append] [--json]
+// Plans a lower-body primitive with the template-model OCP (Ipopt) and writes it to the primitive database;
+// arm-flywheel plans the periodic arm trajectory of stabilizer 3 (fixed-base arm OCP, group "arm-flywheel").
 // Exit codes: 0 solved; 2 bad input (file, key and allowed range named; no output written);
 // 3 not converged (the file IS written, its group attribute solve_status says why); 4 runtime failure.
 // The effective configuration is stored in the file (attribute config_yaml) and next to it (<out>.<name>.yaml).
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -12,6 +14,8 @@
 #include "cli/command.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "planner/arm_flywheel_problem.hpp"
+#include "planner/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
 #include "planner/primitive_io.hpp"
 #include "planner/primitive_summary.hpp"
@@ -34,7 +38,49 @@ std::string sidecarPath(const std::string& out, const std::string& name) {
   return (p.parent_path() / (p.stem().string() + "." + name + ".yaml")).string();
 }
 
+// The arm-flywheel trajectory (stabilizer 3): same flags, exit codes and sidecar as the jumps.
+int runArmPlan(const PlanArgs& a) {
+  const planner::ArmFlywheelConfig cfg = planner::loadArmFlywheelConfig(a.config, a.overrides);
+  if (!a.quiet) std::fprintf(stderr, "planning arm-flywheel (%s) ...\n", cfg.source.c_str());
+  const planner::ArmFlywheelProblem problem(cfg);
+  const planner::SolveResult result = problem.solve(!a.quiet);
+  const planner::ArmTrajectory tr = problem.toTrajectory(result);
+  planner::writeArmTrajectory(a.out, tr, a.append);
+  writeTextFileAtomic(sidecarPath(a.out, tr.name), tr.config_yaml);
+  const bool ok = result.info.solved();
+  const double h_mean = tr.h_ang.col(1).mean(), h_peak = tr.h_ang.col(1).maxCoeff();
+  double torque_ratio = 0.0;
+  for (int j = 0; j < 7; ++j) torque_ratio = std::max(torque_ratio, tr.tau.col(j).cwiseAbs().maxCoeff() / tr.tau_max_model[j]);
+  if (!a.quiet) {
+    std::fprintf(stderr, "arm-flywheel: %s after %d iterations in %.3f s, cost %.6g, max violation %.2e\n",
+                 result.info.status.c_str(), result.info.iterations, result.info.solve_time_s, result.info.cost,
+                 result.info.max_constraint_violation);
+    std::fprintf(stderr, "  period %.3f s, h_y mean %.3f N m s (peak %.3f), peak |tau|/limit %.2f, written to %s\n",
+                 tr.period, h_mean, h_peak, torque_ratio, a.out.c_str());
+    if (!ok) std::fprintf(stderr, "warning: the solver did not converge; the file is written and flagged (solve_status)\n");
+  }
+  if (a.json) {
+    nlohmann::json j;
+    j["primitive"] = tr.name;
+    j["status"] = result.info.status;
+    j["iterations"] = result.info.iterations;
+    j["solve_time_s"] = result.info.solve_time_s;
+    j["cost"] = result.info.cost;
+    j["max_constraint_violation"] = result.info.max_constraint_violation;
+    j["duration_s"] = tr.period;
+    j["h_y_mean_Nms"] = h_mean;
+    j["h_y_peak_Nms"] = h_peak;
+    j["max_torque_ratio"] = torque_ratio;
+    j["variables"] = problem.ocp().numVariables();
+    j["constraints"] = problem.ocp().numConstraints();
+    j["out"] = a.out;
+    printJsonLine(j.dump());
+  }
+  return ok ? kExitOk : kExitNotConverged;
+}
+
 int runPlan(const PlanArgs& a) {
+  if (a.primitive == "arm-flywheel") return runArmPlan(a);
   const planner::JumpConfig cfg = planner::loadJumpConfig(a.primitive, a.config, a.overrides);
   if (!a.quiet) std::fprintf(stderr, "planning %s (%s) ...\n", a.primitive.c_str(), cfg.source.c_str());
   const planner::JumpProblem problem(cfg);
@@ -79,9 +125,9 @@ int runPlan(const PlanArgs& a) {
 
 const Registrar kPlan{{"plan", "Plan a lower-body primitive (template-model OCP solved with Ipopt)", [](CLI::App& sub) {
                          auto a = std::make_shared<PlanArgs>();
-                         sub.add_option("primitive", a->primitive, "squat-jump | half-squat-jump")
+                         sub.add_option("primitive", a->primitive, "squat-jump | half-squat-jump | arm-flywheel")
                              ->required()
-                             ->check(CLI::IsMember({"squat-jump", "half-squat-jump"}));
+                             ->check(CLI::IsMember({"squat-jump", "half-squat-jump", "arm-flywheel"}));
                          sub.add_option("--config", a->config, "YAML configuration (overrides the embedded defaults)");
                          sub.add_option("--set", a->overrides, "override one key, e.g. --set target.height=1.05")
                              ->take_all();
