@@ -25,7 +25,7 @@ workspace:
   rear_x: [-0.6, -0.1]
   left_y: [0.1, 0.5]
   right_y: [-0.5, -0.1]
-  z: [-0.80, -0.435]
+  z: [-0.76, -0.46]
 contact:
   friction: pyramid
   mu: 0.5
@@ -38,7 +38,7 @@ limits:
   velocity: 100.0
   acceleration: 100.0
 target:
-  height: 0.9
+  height: 0.87
   wall_distance: 0.15
 cost:
   base_height: 50.0

@@ -8,7 +8,7 @@ namespace centaur {
 
 const char* AngmomParams::defaultsYaml() {
   return R"(angmom:                       # angular momentum task (docs/stabilizers.md)
-  gain: 1.0                      # [-] omega_fb,d = -gain * omega_imu, [0, 10]
+  gain: 0.3                      # [-] omega_fb,d = -gain * omega_imu, [0, 10]
 )";
 }
 

@@ -12,7 +12,7 @@ namespace centaur {
 class YamlReader;
 
 struct AngmomParams {
-  double gain = 1.0;  ///< [-] omega_fb,d = -gain * omega_imu, [0, 10]
+  double gain = 0.3;  ///< [-] omega_fb,d = -gain * omega_imu, [0, 10] (docs/validation.md: 1 makes the arms flail)
   static const char* defaultsYaml();  ///< the `angmom:` section
   void read(YamlReader& r);
 };

@@ -11,6 +11,8 @@ std::string JumpControllerParams::defaultsYaml() {
   return R"(controller:
   settle_time: 0.5          # [s] hold the first sample before the primitive starts, [0, 10]
   early_touchdown: 0.08     # [s] contact accepted this long before a planned touch-down, [0, 1]
+  touchdown_search_speed: 0.3  # [m/s] late touch-down: the wheel moves on along -n (0: off), [0, 5]
+  touchdown_search_max: 0.15   # [m] largest search offset, [0, 0.5]
   recover_time: 0.0         # [s] after the primitive, back to its first pose in this time (0: hold the end), [0, 10]
   feedforward_acceleration: true  # planned base acceleration into the force distribution
   friction: 0.5             # [-] mu of the force distribution's pyramid, [0.01, 5]
@@ -32,6 +34,8 @@ void JumpControllerParams::read(YamlReader& r) {
   r.get("settle_time", settle_time, 0.0, 10.0);
   r.get("early_touchdown", early_touchdown, 0.0, 1.0);
   r.get("recover_time", recover_time, 0.0, 10.0);
+  r.get("touchdown_search_speed", touchdown_search_speed, 0.0, 5.0);
+  r.get("touchdown_search_max", touchdown_search_max, 0.0, 0.5);
   r.get("feedforward_acceleration", feedforward_acceleration);
   r.get("friction", wbc.force.friction, 0.01, 5.0);
   r.get("contact_on", wbc.detector.on_threshold, 0.0, 1e4);
@@ -72,6 +76,9 @@ void JumpController::start(const RobotState& state, JointCommand& command) {
   }
   stabilizer_->start(m.jointNames(), q_home);
   replay_.sample(t_rel_, sample_);
+  w_search_.setZero();
+  w_search_end_.setZero();
+  end_latched_ = false;
   wbc_->start(state, command);  // holds the feet where they are; the first tick below sets the references
   tick(state, command);
 }
@@ -80,16 +87,36 @@ void JumpController::tick(const RobotState& state, JointCommand& command) noexce
   t_rel_ = state.t - t0_ - params_.settle_time;
   replay_.sample(t_rel_, sample_);
   const double t_after = t_rel_ - replay_.duration();
+  const double dt = wbc_->params().dt;
+  // late touch-down search (W offsets), from the previous tick's stance
+  if (t_rel_ >= 0.0 && t_after < 0.0) {
+    for (int k = 0; k < 4; ++k) {
+      if (sample_.contact[k] && !wbc_->stance()[k]) {
+        w_search_.col(k) -= params_.touchdown_search_speed * dt * sample_.w_normal[k];
+        const double len = w_search_.col(k).norm();
+        if (len > params_.touchdown_search_max) w_search_.col(k) *= params_.touchdown_search_max / len;
+      } else if (!sample_.contact[k]) {
+        w_search_.col(k) *= 1.0 - dt / 0.2;
+      }
+    }
+  }
+  if (t_after >= 0.0 && !end_latched_) {
+    w_search_end_ = w_search_;
+    end_latched_ = true;
+  }
+  const Eigen::Matrix3d b_R_w = state.imu_quat.toRotationMatrix().transpose();
   if (params_.recover_time > 0.0 && t_after >= 0.0) {
     // recovery: quintic from the last pose back to the first one, even weight split
     const double s = std::min(1.0, t_after / params_.recover_time);
     const double h = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
     const double dh = s < 1.0 ? 30.0 * s * s * (1.0 - s) * (1.0 - s) / params_.recover_time : 0.0;
-    sample_.b_p_wheel = last_.b_p_wheel + h * (first_.b_p_wheel - last_.b_p_wheel);
+    w_search_ = (1.0 - h) * w_search_end_;
+    sample_.b_p_wheel = last_.b_p_wheel + h * (first_.b_p_wheel - last_.b_p_wheel) + b_R_w * w_search_;
     sample_.b_v_wheel = dh * (first_.b_p_wheel - last_.b_p_wheel);
     wbc_->setFootReferences(sample_.b_p_wheel, sample_.b_v_wheel);
     wbc_->setPlannedForces(sample_.w_F, true);
   } else {
+    sample_.b_p_wheel += b_R_w * w_search_;
     wbc_->setFootReferences(sample_.b_p_wheel, sample_.b_v_wheel);
     wbc_->setPlannedForces(sample_.w_F);
   }
@@ -104,7 +131,7 @@ void JumpController::tick(const RobotState& state, JointCommand& command) noexce
     }
   }
   wbc_->setStanceMask(allowed);
-  stabilizer_->update(state, wbc_->params().dt, sample_.running, *wbc_);
+  stabilizer_->update(state, dt, sample_.running, *wbc_);
   wbc_->tick(state, command);
 }
 

@@ -22,6 +22,11 @@
 //                                     (late touch-down: planned but not detected -> not in stance; late
 //                                     lift-off: detected but planned in flight -> not in stance),
 //   stabilizer->update(...)           posture / pelvis / momentum references.
+// Late touch-down search: a wheel planned in contact but not detected in stance moves on along -n (its
+// surface's normal) at touchdown_search_speed, up to touchdown_search_max, on top of the planned r_C; the offset
+// is held while the wheel is in stance, decays (time constant 0.2 s) while it is planned in flight, and is
+// blended out with the recovery. So a robot that flies higher or lands behind the plan still reaches the
+// ground or the wall instead of waving its legs in the air.
 // tick() never allocates and never throws.
 #include <memory>
 #include <string>
@@ -37,6 +42,8 @@ class YamlReader;
 struct JumpControllerParams {
   double settle_time = 0.5;       ///< [s] before the primitive starts, [0, 10]
   double early_touchdown = 0.08;  ///< [s] window before a planned touch-down in which contact is accepted, [0, 1]
+  double touchdown_search_speed = 0.3;  ///< [m/s] late touch-down search speed (0: off), [0, 5]
+  double touchdown_search_max = 0.15;   ///< [m] largest search offset, [0, 0.5]
   double recover_time = 0.0;      ///< [s] back to the first sample's r_C after the end (0: hold the last), [0, 10]
   bool feedforward_acceleration = true;  ///< pass the planned base acceleration to the force distribution
   WholeBodyParams wbc;            ///< stack_yaml is filled from the stabilizer
@@ -59,6 +66,8 @@ class JumpController final : public Controller {
   const PrimitiveReplay& replay() const { return replay_; }
   const Stabilizer& stabilizer() const { return *stabilizer_; }
   const ReplaySample& lastSample() const { return sample_; }
+  /// Late touch-down search offsets of the wheels (W) [m].
+  const Eigen::Matrix<double, 3, 4>& searchOffsets() const { return w_search_; }
   /// Time since the primitive's start (negative while settling) [s].
   double primitiveTime() const { return t_rel_; }
   /// Primitive start time (robot time) [s].
@@ -71,6 +80,8 @@ class JumpController final : public Controller {
   std::unique_ptr<WholeBodyController> wbc_;
   ReplaySample sample_, first_, last_;
   Eigen::VectorXd vdot_;
+  Eigen::Matrix<double, 3, 4> w_search_ = Eigen::Matrix<double, 3, 4>::Zero(), w_search_end_ = w_search_;
+  bool end_latched_ = false;
   double t0_ = 0.0, t_rel_ = 0.0;
 };
 

@@ -30,6 +30,7 @@ std::string angmomStackYaml() {
 pelvis: {type: PelvisAngularVelocity, base_link: pelvis}
 ang_mom:
   type: AngularMomentum
+  indices: [1]                   # pitch row only (the tilting axis)
   weight: 1.0
   joints: [j_arm1_1, j_arm1_2, j_arm1_3, j_arm1_4, j_arm2_1, j_arm2_2, j_arm2_3, j_arm2_4]
 posture: {type: Postural, lambda: 10.0, weight: 0.01})") + kFeet;

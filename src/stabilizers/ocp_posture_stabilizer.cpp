@@ -1,0 +1,175 @@
+#include "stabilizers/ocp_posture_stabilizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+#include "common/error.hpp"
+#include "common/yaml_reader.hpp"
+#include "controller/whole_body_controller.hpp"
+#include "planner/arm_flywheel_problem.hpp"
+#include "planner/arm_trajectory_io.hpp"
+#include "stabilizers/stabilizer_stacks.hpp"
+
+namespace centaur {
+
+const char* OcpPostureParams::defaultsYaml() {
+  return R"(ocp:                          # OCP postural task, stabilizer 3 (docs/stabilizers.md)
+  flywheel_file: ""              # HDF5 from `centaur plan arm-flywheel`; "" = plan it with the defaults (~1-3 s)
+  flywheel_group: arm-flywheel   # group in that file
+  gamma_tau: 1.0                 # [1/rad] phase per radian of pitch: d tau/dt = gamma_tau omega_y, [0, 100]
+  max_speed: 1.0                 # |d tau/dt| <= max_speed / period (1 = the planned speed), [0, 10]
+  initial_phase: 0.0             # tau_0, [0, 1)
+  blend_time: 1.0                # [s] home -> q*(tau_0) after start, [0, 10]
+  arms: both                     # both | left | right (right = mirror image of the plan)
+  interpolation: samples         # samples (1 kHz rows) | knots (the OCP nodes, as the paper)
+)";
+}
+
+void OcpPostureParams::read(YamlReader& r) {
+  r.get("flywheel_file", flywheel_file);
+  r.get("flywheel_group", flywheel_group);
+  r.get("gamma_tau", gamma_tau, 0.0, 100.0);
+  r.get("max_speed", max_speed, 0.0, 10.0);
+  r.get("initial_phase", initial_phase, 0.0, 1.0);
+  if (initial_phase >= 1.0) r.fail("initial_phase", "must be in [0, 1)");
+  r.get("blend_time", blend_time, 0.0, 10.0);
+  r.get("arms", arms, {"both", "left", "right"});
+  r.get("interpolation", interpolation, {"samples", "knots"});
+  if (flywheel_group.empty()) r.fail("flywheel_group", "must not be empty");
+}
+
+void interpolatePeriodic(const planner::RowMatrix& table, double tau, Eigen::Ref<Eigen::VectorXd> out) noexcept {
+  const Eigen::Index M = table.rows() - 1;
+  if (M < 1 || !std::isfinite(tau)) {
+    out = table.row(0).transpose();
+    return;
+  }
+  tau -= std::floor(tau);
+  const double x = tau * static_cast<double>(M);
+  const Eigen::Index k = std::min<Eigen::Index>(M - 1, static_cast<Eigen::Index>(std::floor(x)));
+  const double f = x - static_cast<double>(k);
+  for (Eigen::Index j = 0; j < table.cols(); ++j) out[j] = table(k, j) + f * (table(k + 1, j) - table(k, j));
+}
+
+std::shared_ptr<const planner::ArmTrajectory> defaultArmFlywheel() {
+  static std::mutex mutex;
+  static std::shared_ptr<const planner::ArmTrajectory> plan;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (!plan) {
+    auto tr = std::make_shared<planner::ArmTrajectory>(
+        planner::planArmFlywheel(planner::loadArmFlywheelConfig("", {})));
+    if (!tr->solve.solved()) {
+      throw RuntimeError("ocp stabilizer: the default arm-flywheel plan did not converge (" + tr->solve.status +
+                         "); plan it with `centaur plan arm-flywheel` and set ocp.flywheel_file");
+    }
+    plan = tr;
+  }
+  return plan;
+}
+
+namespace {
+std::shared_ptr<const planner::ArmTrajectory> loadTrajectory(const OcpPostureParams& p) {
+  if (p.flywheel_file.empty()) return defaultArmFlywheel();
+  auto tr = std::make_shared<planner::ArmTrajectory>(planner::readArmTrajectory(p.flywheel_file, p.flywheel_group));
+  if (!tr->solve.solved()) {
+    throw InputError(p.flywheel_file, p.flywheel_group,
+                     "the arm trajectory is flagged '" + tr->solve.status + "' (not converged); re-plan it");
+  }
+  return tr;
+}
+}  // namespace
+
+OcpPostureStabilizer::OcpPostureStabilizer(OcpPostureParams params)
+    : params_(std::move(params)), traj_(loadTrajectory(params_)) {
+  init();
+}
+
+OcpPostureStabilizer::OcpPostureStabilizer(OcpPostureParams params,
+                                           std::shared_ptr<const planner::ArmTrajectory> trajectory)
+    : params_(std::move(params)), traj_(std::move(trajectory)) {
+  if (!traj_) throw InputError("ocp stabilizer: no arm trajectory");
+  init();
+}
+
+void OcpPostureStabilizer::init() {
+  const planner::ArmTrajectory& tr = *traj_;
+  const std::string where = params_.flywheel_file.empty() ? std::string("<default arm-flywheel plan>") : params_.flywheel_file;
+  if (tr.q.cols() != 7 || tr.q.rows() < 2 || tr.joint_names.size() != 7 || !(tr.period > 0.0)) {
+    throw InputError(where + ": the arm trajectory needs 7 joints, >= 2 samples and a positive period");
+  }
+  if (params_.interpolation == "knots") {
+    if (tr.knot_x.rows() < 2 || tr.knot_x.cols() != 14) throw InputError(where + ": the trajectory has no knots");
+    table_ = tr.knot_x.leftCols(7);
+  } else {
+    table_ = tr.q;
+  }
+  if ((table_.row(0) - table_.row(table_.rows() - 1)).cwiseAbs().maxCoeff() > 1e-4) {
+    throw InputError(where + ": the arm trajectory is not periodic (first and last rows differ by more than 1e-4 rad)");
+  }
+  const double h_mean = tr.h_ang.rows() == tr.q.rows() ? tr.h_ang.col(1).mean() : 1.0;
+  direction_ = h_mean >= 0.0 ? 1.0 : -1.0;
+  mirror_ = planner::armMirrorSigns();
+  tau_ = params_.initial_phase;
+  q_arm_.setZero(7);
+}
+
+std::string OcpPostureStabilizer::stackYaml() const { return postureStackYaml(); }
+
+void OcpPostureStabilizer::start(const std::vector<std::string>& names, const Eigen::VectorXd& q_home) {
+  auto find = [&](const std::string& j) {
+    auto it = std::find(names.begin(), names.end(), j);
+    if (it == names.end()) throw InputError("ocp stabilizer: the robot has no joint '" + j + "' (arm of the plan)");
+    return static_cast<int>(it - names.begin());
+  };
+  left_.assign(7, -1);
+  right_.assign(7, -1);
+  for (int j = 0; j < 7; ++j) {
+    const std::string& l = traj_->joint_names[j];
+    std::string r = l;
+    const auto pos = r.find("arm1");
+    if (pos == std::string::npos) throw InputError("ocp stabilizer: plan joint '" + l + "' is not a left-arm joint (j_arm1_*)");
+    r.replace(pos, 4, "arm2");
+    if (params_.arms != "right") left_[j] = find(l);
+    if (params_.arms != "left") right_[j] = find(r);
+  }
+  if (q_home.size() != static_cast<Eigen::Index>(names.size())) {
+    throw InputError("ocp stabilizer: q_home has " + std::to_string(q_home.size()) + " entries for " +
+                     std::to_string(names.size()) + " joints");
+  }
+  q_home_ = q_home;
+  q_d_ = q_home;
+  q_arm_.setZero(7);
+  tau_ = params_.initial_phase;
+  elapsed_ = 0.0;
+}
+
+void OcpPostureStabilizer::step(const RobotState& state, double dt, bool active) noexcept {
+  if (q_d_.size() == 0) return;  // not started
+  const bool dt_ok = std::isfinite(dt) && dt > 0.0;
+  if (dt_ok) elapsed_ += dt;
+  const double w = state.imu_omega.y();
+  if (active && dt_ok && std::isfinite(w)) {
+    const double rmax = params_.max_speed / traj_->period;
+    const double rate = std::clamp(direction_ * params_.gamma_tau * w, -rmax, rmax);
+    tau_ += rate * dt;
+    tau_ -= std::floor(tau_);  // periodic plan: wrap into [0, 1)
+  }
+  interpolatePeriodic(table_, tau_, q_arm_);
+  double s = 1.0;
+  if (params_.blend_time > 0.0) {
+    const double x = std::min(1.0, elapsed_ / params_.blend_time);
+    s = x * x * (3.0 - 2.0 * x);
+  }
+  for (int j = 0; j < 7; ++j) {
+    if (left_[j] >= 0) q_d_[left_[j]] = (1.0 - s) * q_home_[left_[j]] + s * q_arm_[j];
+    if (right_[j] >= 0) q_d_[right_[j]] = (1.0 - s) * q_home_[right_[j]] + s * mirror_[j] * q_arm_[j];
+  }
+}
+
+void OcpPostureStabilizer::update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept {
+  step(state, dt, active);
+  if (q_d_.size() > 0) wbc.setPostureReference(q_d_);
+}
+
+}  // namespace centaur
