@@ -1,9 +1,11 @@
 // centaur compare [--out DIR] [--json] [--jobs N] [--jumps squat-jump,half-squat-jump]
-//                 [--modes none,raibert,angmom,ocp] [--set key=value]... [--primitives F.h5]
-// The paper's Fig. 4: plans the jumps once (DIR/primitives.h5, unless --primitives is given), simulates every
-// (jump, stabilizer mode) pair in-process on a thread pool (DIR/<jump>-<mode>.h5, each with its effective
-// configuration DIR/<jump>-<mode>.config.yaml), and writes DIR/compare.md, DIR/compare.json,
-// DIR/compare-pitch.csv and DIR/compare-pitch.png (IMU pitch over time, one panel per jump).
+//                 [--modes none,raibert,angmom,ocp] [--set key=value]... [--primitives F.h5] [--flywheel F.h5]
+// The paper's Fig. 4: plans the jumps once (DIR/primitives.h5, unless --primitives is given) and, with mode ocp
+// when the jump scenarios take a `flywheel` option, the arm-flywheel trajectory (DIR/arm-flywheel.h5, unless
+// --flywheel is given); simulates every (jump, stabilizer mode) pair in-process on a thread pool
+// (DIR/<jump>-<mode>.h5, each with its effective configuration DIR/<jump>-<mode>.config.yaml); writes
+// DIR/compare.md, DIR/compare.json, DIR/compare-pitch.csv and DIR/compare-pitch.png (IMU pitch over time, one
+// panel per jump).
 // Exit codes: 0 every run completed (a fall is an outcome, not an error); 2 bad input (nothing written when
 // detected before the runs); 4 runtime failure (a run, planning or plotting failed; what completed is written).
 #include <nlohmann/json.hpp>
@@ -20,6 +22,8 @@
 #include "cli/compare_plot.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "planner/arm_flywheel_problem.hpp"
+#include "planner/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
 #include "planner/primitive_io.hpp"
 #include "sim/compare_pitch.hpp"
@@ -41,6 +45,7 @@ struct CompareArgs {
   std::vector<std::string> modes{"none", "raibert", "angmom", "ocp"};
   std::vector<std::string> sets;
   std::string primitives;  // existing primitive file; "" = plan into DIR/primitives.h5
+  std::string flywheel;    // existing arm-flywheel file; "" = plan into DIR/arm-flywheel.h5 (when needed)
 };
 
 std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
@@ -91,7 +96,38 @@ std::vector<const sim::Scenario*> validate(const CompareArgs& a) {
     }
     scenarios.push_back(s);
   }
+  if (!a.flywheel.empty()) planner::readArmTrajectory(a.flywheel);  // InputError naming the file and dataset
   return scenarios;
+}
+
+/// True if the OCP stabilizer runs and the jump scenarios take its trajectory as the `flywheel` option.
+bool needsFlywheel(const CompareArgs& a, const std::vector<const sim::Scenario*>& scenarios) {
+  if (std::find(a.modes.begin(), a.modes.end(), "ocp") == a.modes.end()) return false;
+  for (const auto* s : scenarios) {
+    if (findOption(*s, "flywheel") != nullptr) return true;
+  }
+  return false;
+}
+
+/// Plan the arm-flywheel trajectory with its defaults into `path` (plus <stem>.arm-flywheel.yaml); its status.
+std::string planFlywheel(const std::string& path, std::vector<std::string>& files) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const planner::ArmFlywheelProblem problem(planner::loadArmFlywheelConfig("", {}));
+  const planner::SolveResult result = problem.solve(false);
+  const planner::ArmTrajectory tr = problem.toTrajectory(result);
+  const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::fprintf(stderr, "compare: planned arm-flywheel: %s, %d iterations, %.1f s\n", result.info.status.c_str(),
+               result.info.iterations, dt);
+  if (!result.info.solved()) {
+    std::fprintf(stderr, "compare: warning: arm-flywheel did not converge; its trajectory is used as it is\n");
+  }
+  planner::writeArmTrajectory(path, tr, false);
+  files.push_back(path);
+  const fs::path f(path);
+  const std::string sidecar = (f.parent_path() / (f.stem().string() + "." + tr.name + ".yaml")).string();
+  writeTextFileAtomic(sidecar, tr.config_yaml);
+  files.push_back(sidecar);
+  return result.info.status;
 }
 
 /// Plan every jump with its defaults into `path` (plus <stem>.<jump>.yaml); returns (name, status) pairs.
@@ -145,6 +181,11 @@ int runCompare(const CompareArgs& a) {
       plan_json.push_back({{"primitive", name}, {"status", status}});
     }
   }
+  std::string flywheel = a.flywheel;
+  if (flywheel.empty() && needsFlywheel(a, scenarios)) {
+    flywheel = (fs::path(a.out) / "arm-flywheel.h5").string();
+    plan_json.push_back({{"primitive", "arm-flywheel"}, {"status", planFlywheel(flywheel, files)}});
+  }
 
   // 2. the runs
   struct Pair {
@@ -159,10 +200,13 @@ int runCompare(const CompareArgs& a) {
       r.label = p.jump + "/" + mode;
       r.scenario = p.jump;
       r.options = {{"primitive", primitives}, {"stabilizer", mode}};
+      const bool takes_flywheel = findOption(*scenarios[j], "flywheel") != nullptr;
+      if (takes_flywheel && !flywheel.empty()) r.options["flywheel"] = flywheel;
       r.overrides = a.sets;
       r.outputs.log_path = p.log;
-      // The OCP stabilizer may solve its arm OCP (Ipopt + MUMPS, not thread-safe) while setting up: one at a time.
-      if (mode == "ocp") r.exclusive_group = "ipopt";
+      // Without a trajectory file the OCP stabilizer may solve its arm OCP (Ipopt + MUMPS, not thread-safe)
+      // while it is set up: such runs go one at a time.
+      if (mode == "ocp" && !r.options.count("flywheel")) r.exclusive_group = "ipopt";
       runs.push_back(std::move(r));
       pairs.push_back(std::move(p));
     }
@@ -253,6 +297,7 @@ int runCompare(const CompareArgs& a) {
     j["runs_wall_time_s"] = runs_wall;
     j["threads"] = threads;
     j["primitives"] = primitives;
+    j["flywheel"] = flywheel.empty() ? nlohmann::json(nullptr) : nlohmann::json(flywheel);
     j["planned"] = plan_json;
     printJsonLine(j.dump());
   }
@@ -274,6 +319,9 @@ const Registrar kCompare{Command{
       sub.add_option("--modes", a->modes, "comma-separated stabilizer modes")->delimiter(',')->capture_default_str();
       sub.add_option("--set", a->sets, "override a simulation configuration key in every run (repeatable)");
       sub.add_option("--primitives", a->primitives, "use the primitives of this file instead of planning them")
+          ->check(CLI::ExistingFile);
+      sub.add_option("--flywheel", a->flywheel,
+                     "ocp mode: use the arm-flywheel trajectory of this file instead of planning it")
           ->check(CLI::ExistingFile);
       return [a]() { return runCompare(*a); };
     }}};

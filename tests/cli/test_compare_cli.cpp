@@ -65,6 +65,8 @@ TEST(CompareCli, BadFlagsExit2AndWriteNothing) {
       {"--jobs -1", "--jobs"},
       {"--primitives " + dir.file("missing.h5"), "missing.h5"},
       {"--primitives " + file, "a-file"},  // not an HDF5 primitive file
+      {"--flywheel " + dir.file("no-arm.h5"), "no-arm.h5"},
+      {"--flywheel " + file, "a-file"},  // not an arm-flywheel file
   };
   for (const auto& [args, expect] : cases) {
     const CliRun r = run("compare --out " + out + " " + args);
