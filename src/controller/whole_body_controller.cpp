@@ -84,6 +84,10 @@ WholeBodyController::WholeBodyController(const std::string& mjcf_path, const Who
     kd_[i] = g.kd;
   }
   kd_safe_ = params_.safe_kd_scale * kd_;
+  tau_max_ = model_meas_->limits().tau_max;
+  for (int i = 0; i < n_; ++i) {
+    if (!(tau_max_[i] > 0.0) || !std::isfinite(tau_max_[i])) tau_max_[i] = 1e9;
+  }
   q_home_ = model_meas_->homeJoints();
   q_ref_.setZero(n_);
   qd_ref_.setZero(n_);
@@ -269,7 +273,8 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
     ++counters_.force_failures;
   } else {
     if (fs == ForceDistributionStatus::kRelaxed) ++counters_.force_relaxed;
-    good_tau_ff_ = force_.tauFeedforward();
+    // never command a feed-forward beyond the effort limits (the drive would saturate it anyway)
+    good_tau_ff_ = force_.tauFeedforward().cwiseMax(-tau_max_).cwiseMin(tau_max_);
   }
   // 8. command
   good_q_ref_ = q_ref_;

@@ -11,7 +11,7 @@
 //   6. qd_ref = x.tail(n), q_ref += qd_ref dt (the base twist part of x is not integrated: the base moves as the
 //      contacts let it);
 //   7. ForceDistribution on the measured model: vdot_d (default 0), planned forces F_d (default: the weight
-//      split evenly on the stance wheels), stance from the detector -> tau_ff;
+//      split evenly on the stance wheels), stance from the detector -> tau_ff, clamped to the effort limits;
 //   8. JointCommand: q_ref, qd_ref, tau_ff, kp, kd.
 // References (hooks for the replay / stabilizers): setFootReferences (pelvis -> wheel centre, base frame),
 // setPlannedForces, setBaseAcceleration, setPostureReference, setPelvisAngularVelocity, setAngularMomentum.
@@ -149,7 +149,7 @@ class WholeBodyController final : public Controller {
   std::shared_ptr<PelvisAngularVelocityTask> pelvis_;
   std::shared_ptr<AngularMomentumTask> momentum_;
   int n_ = 0, nq_ = 0, nv_ = 0;
-  Eigen::VectorXd kp_, kd_, kd_safe_, q_home_;
+  Eigen::VectorXd kp_, kd_, kd_safe_, q_home_, tau_max_;
   Eigen::VectorXd q_ref_, qd_ref_, x_, q_ik_, v_ik_, vdot_d_;
   Eigen::VectorXd good_q_ref_, good_tau_ff_;
   WheelContacts contacts_;
