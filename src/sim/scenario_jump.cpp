@@ -41,11 +41,13 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
   s.defaults_yaml = toYamlString(mergeYaml(loadYamlString(s.defaults_yaml, name), loadYamlString(extra_defaults, name)));
   s.options = {{"primitive", "primitive database (HDF5) holding the group '" + name + "' (default: plan it now)",
                 "", {}, false},
-               {"stabilizer", "upper-body stabilizer", "none", {"none", "raibert", "angmom", "ocp"}, false}};
+               {"stabilizer", "upper-body stabilizer", "none", {"none", "raibert", "angmom", "ocp"}, false},
+               {"flywheel", "arm-flywheel plan (HDF5) for --stabilizer ocp (default: plan it now)", "", {}, false}};
   s.make_controller = [name](ScenarioContext& ctx) -> std::unique_ptr<Controller> {
     JumpControllerParams params;
     params.read(ctx.controller_config);
-    std::unique_ptr<Stabilizer> stabilizer = makeStabilizer(ctx.options.at("stabilizer"), ctx.controller_config);
+    std::unique_ptr<Stabilizer> stabilizer = makeStabilizer(ctx.options.at("stabilizer"), ctx.controller_config,
+                                                           ctx.options.at("flywheel"));
     ctx.controller_config.finish();
     params.wbc.dt = ctx.robot.controlPeriodSeconds();
     const planner::Primitive primitive = loadOrPlan(name, ctx.options.at("primitive"));
@@ -71,12 +73,13 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
 
 Scenario squatJumpScenario() {
   // No wall (it is behind the robot for the half-squat jump only); after landing, stand up again.
-  return jumpScenario("squat-jump", JumpKind::kSquat, 5.0, "world: {wall_x: -20.0}\ncontroller: {recover_time: 1.0}\n",
+  return jumpScenario("squat-jump", JumpKind::kSquat, 5.0,
+                      "world: {wall_x: -20.0}\ncontroller: {recover_time: 1.0, ocp: {blend_time: 0.45}}\n",
                       "replay a squat-jump primitive (all four wheels take off and land) with an upper-body stabilizer");
 }
 
 Scenario halfSquatJumpScenario() {
-  return jumpScenario("half-squat-jump", JumpKind::kHalfSquat, 6.5, "{}",
+  return jumpScenario("half-squat-jump", JumpKind::kHalfSquat, 6.5, "controller: {ocp: {blend_time: 0.45}}\n",
                       "replay a half-squat-jump primitive (rear wheels onto the wall behind) with an upper-body stabilizer");
 }
 

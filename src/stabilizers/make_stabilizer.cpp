@@ -6,6 +6,7 @@
 #include "common/yaml_reader.hpp"
 #include "stabilizers/angmom_stabilizer.hpp"
 #include "stabilizers/no_stabilizer.hpp"
+#include "stabilizers/ocp_posture_stabilizer.hpp"
 #include "stabilizers/raibert_stabilizer.hpp"
 
 namespace centaur {
@@ -20,12 +21,20 @@ std::string indent(const std::string& text) {
 }  // namespace
 
 std::string stabilizerDefaultsYaml() {
-  return indent(RaibertParams::defaultsYaml()) + indent(AngmomParams::defaultsYaml());
+  return indent(RaibertParams::defaultsYaml()) + indent(AngmomParams::defaultsYaml()) +
+         indent(OcpPostureParams::defaultsYaml());
 }
 
-std::unique_ptr<Stabilizer> makeStabilizer(const std::string& mode, YamlReader& r) {
+std::unique_ptr<Stabilizer> makeStabilizer(const std::string& mode, YamlReader& r, const std::string& flywheel_file) {
   RaibertParams raibert;
   AngmomParams angmom;
+  OcpPostureParams ocp;
+  {
+    auto c = r.child("ocp");
+    ocp.read(c);
+    c.finish();
+  }
+  if (!flywheel_file.empty()) ocp.flywheel_file = flywheel_file;
   {
     auto c = r.child("raibert");
     raibert.read(c);
@@ -39,6 +48,7 @@ std::unique_ptr<Stabilizer> makeStabilizer(const std::string& mode, YamlReader& 
   if (mode == "none") return std::make_unique<NoStabilizer>();
   if (mode == "raibert") return std::make_unique<RaibertStabilizer>(raibert);
   if (mode == "angmom") return std::make_unique<AngmomStabilizer>(angmom);
+  if (mode == "ocp") return std::make_unique<OcpPostureStabilizer>(ocp);
   throw InputError("stabilizer '" + mode + "' is not available (none, raibert, angmom, ocp)");
 }
 
