@@ -61,7 +61,7 @@ std::string Jumps::file_;
 }  // namespace
 
 TEST_F(Jumps, SquatJumpLandsUprightInEveryMode) {
-  for (const char* mode : {"none", "raibert", "angmom"}) {
+  for (const char* mode : {"none", "raibert", "angmom", "ocp"}) {
     const RunSummary r = run("squat-jump", mode);
     EXPECT_EQ(r.outcome, "success") << mode;
     EXPECT_GT(r.extra.at("flight_time_s"), 0.2) << mode;   // it really jumps (plan: 0.27 s)
@@ -70,7 +70,7 @@ TEST_F(Jumps, SquatJumpLandsUprightInEveryMode) {
 }
 
 TEST_F(Jumps, HalfSquatJumpReachesSteadyWallContact) {
-  for (const char* mode : {"none", "raibert", "angmom"}) {
+  for (const char* mode : {"none", "raibert", "angmom", "ocp"}) {
     const RunSummary r = run("half-squat-jump", mode);
     EXPECT_EQ(r.outcome, "success") << mode;
     EXPECT_GE(r.extra.at("wall_contact_s"), 0.5) << mode;
