@@ -129,7 +129,7 @@ void WholeBodyController::start(const RobotState& state, JointCommand& command) 
   model_meas_->update(estimator_.q(), estimator_.v());
   q_ik_ = estimator_.q();
   v_ik_.setZero();
-  model_ik_->update(q_ik_, v_ik_);
+  model_ik_->update(q_ik_, v_ik_, RobotModel::Detail::kMomentum);  // velocity IK: no dynamics needed
   holdCurrentReferences();
   if (posture_) posture_->setReference(q_home_);
   // gravity compensation of the start posture as the first "last good" feed-forward
@@ -239,7 +239,7 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
   q_ik_.tail(n_) = q_ref_;
   v_ik_.head<6>() = estimator_.v().head<6>();
   v_ik_.tail(n_) = qd_ref_;
-  model_ik_->update(q_ik_, v_ik_);
+  model_ik_->update(q_ik_, v_ik_, RobotModel::Detail::kMomentum);  // velocity IK: no dynamics needed
   if (resume_pending_) {
     holdCurrentReferences();
     resume_pending_ = false;

@@ -209,7 +209,8 @@ Eigen::Vector3d RobotModel::gravity() const { return impl_->grav; }
 const Eigen::VectorXd& RobotModel::q() const { return impl_->q; }
 const Eigen::VectorXd& RobotModel::v() const { return impl_->v; }
 
-void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v) {
+void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v,
+                        Detail detail) {
   Impl& I = *impl_;
   const mjModel* m = I.m;
   mjData* d = I.d;
@@ -222,9 +223,12 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
   mj_kinematics(m, d);
   mj_comPos(m, d);
   mj_crb(m, d);
-  mj_comVel(m, d);
-  mj_fullM(m, I.M.data(), d->qM);  // row-major nv x nv, same layout as RowMatrixXd
-  mj_rne(m, d, 0, I.b.data());
+  const bool full = detail == Detail::kFull;
+  if (full) {
+    mj_comVel(m, d);
+    mj_fullM(m, I.M.data(), d->qM);  // row-major nv x nv, same layout as RowMatrixXd
+    mj_rne(m, d, 0, I.b.data());
+  }
 
   // Centroidal momentum matrix: column j = crb[body(j)] * cdof[j], about the tree's CoM.
   double res[6];
@@ -238,6 +242,7 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
   I.Jcom = I.A.topRows<3>() / I.mass;
   I.g.noalias() = -I.mass * (I.Jcom.transpose() * I.grav);
   I.h.noalias() = I.A * I.v;
+  if (!full) return;
 
   // Bias spatial accelerations (vdot = 0, no gravity), root to leaves; body ids are topologically sorted.
   I.cacc.col(0).setZero();

@@ -50,8 +50,17 @@ class RobotModel {
   Eigen::VectorXd homeJoints() const;
 
   // ---- state ----
+  /// How much update() computes.
+  enum class Detail {
+    kFull,      ///< everything below
+    kMomentum,  ///< kinematics, frame poses and Jacobians, CoM, centroidal momentum matrix A, h = A v, Jcom,
+                ///< gravity vector g; NOT the mass matrix, the bias forces nor the momentum bias (their
+                ///< queries return the values of the last kFull update). Enough for velocity-level IK and
+                ///< the base estimator, and about half the cost.
+  };
   /// Set q (nq) and v (nv) and compute kinematics, CoM, mass matrix and bias forces. No allocation.
-  void update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v);
+  void update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v,
+              Detail detail = Detail::kFull);
 
   // ---- queries on the last update(); none allocates (outputs must be pre-sized) ----
   Eigen::Isometry3d framePose(int frame) const;  ///< w_T_frame
