@@ -23,6 +23,7 @@ const char* OcpPostureParams::defaultsYaml() {
   blend_time: 1.0                # [s] home -> q*(tau_0) after start, [0, 10]
   arms: both                     # both | left | right (right = mirror image of the plan)
   interpolation: samples         # samples (1 kHz rows) | knots (the OCP nodes, as the paper)
+  after_end: home                # arms after the primitive: home | initial (q*(tau_0)) | hold, blended
 )";
 }
 
@@ -36,6 +37,7 @@ void OcpPostureParams::read(YamlReader& r) {
   r.get("blend_time", blend_time, 0.0, 10.0);
   r.get("arms", arms, {"both", "left", "right"});
   r.get("interpolation", interpolation, {"samples", "knots"});
+  r.get("after_end", after_end, {"home", "initial", "hold"});
   if (flywheel_group.empty()) r.fail("flywheel_group", "must not be empty");
 }
 
@@ -109,6 +111,9 @@ void OcpPostureStabilizer::init() {
   }
   const double h_mean = tr.h_ang.rows() == tr.q.rows() ? tr.h_ang.col(1).mean() : 1.0;
   direction_ = h_mean >= 0.0 ? 1.0 : -1.0;
+  after_end_ = params_.after_end == "initial" ? AfterEnd::kInitial
+               : params_.after_end == "hold"  ? AfterEnd::kHold
+                                              : AfterEnd::kHome;
   mirror_ = planner::armMirrorSigns();
   tau_ = params_.initial_phase;
   q_arm_.setZero(7);
@@ -139,13 +144,23 @@ void OcpPostureStabilizer::start(const std::vector<std::string>& names, const Ei
   }
   q_home_ = q_home;
   q_d_ = q_home;
+  q_from_ = q_home;
   q_arm_.setZero(7);
   tau_ = params_.initial_phase;
   elapsed_ = 0.0;
+  was_active_ = ended_ = false;
 }
 
 void OcpPostureStabilizer::step(const RobotState& state, double dt, bool active) noexcept {
   if (q_d_.size() == 0) return;  // not started
+  if (active != was_active_) {
+    if (!active || ended_) {  // the primitive ended, or starts again after an end: blend from here
+      q_from_ = q_d_;
+      elapsed_ = 0.0;
+    }
+    ended_ = !active;
+    was_active_ = active;
+  }
   const bool dt_ok = std::isfinite(dt) && dt > 0.0;
   if (dt_ok) elapsed_ += dt;
   const double w = state.imu_omega.y();
@@ -155,15 +170,22 @@ void OcpPostureStabilizer::step(const RobotState& state, double dt, bool active)
     tau_ += rate * dt;
     tau_ -= std::floor(tau_);  // periodic plan: wrap into [0, 1)
   }
-  interpolatePeriodic(table_, tau_, q_arm_);
+  const bool home = ended_ && after_end_ == AfterEnd::kHome;
+  interpolatePeriodic(table_, ended_ && after_end_ == AfterEnd::kInitial ? params_.initial_phase : tau_, q_arm_);
   double s = 1.0;
   if (params_.blend_time > 0.0) {
     const double x = std::min(1.0, elapsed_ / params_.blend_time);
     s = x * x * (3.0 - 2.0 * x);
   }
   for (int j = 0; j < 7; ++j) {
-    if (left_[j] >= 0) q_d_[left_[j]] = (1.0 - s) * q_home_[left_[j]] + s * q_arm_[j];
-    if (right_[j] >= 0) q_d_[right_[j]] = (1.0 - s) * q_home_[right_[j]] + s * mirror_[j] * q_arm_[j];
+    if (left_[j] >= 0) {
+      const int i = left_[j];
+      q_d_[i] = (1.0 - s) * q_from_[i] + s * (home ? q_home_[i] : q_arm_[j]);
+    }
+    if (right_[j] >= 0) {
+      const int i = right_[j];
+      q_d_[i] = (1.0 - s) * q_from_[i] + s * (home ? q_home_[i] : mirror_[j] * q_arm_[j]);
+    }
   }
 }
 

@@ -19,7 +19,10 @@
 //
 // Blend: from start(), the arm reference goes smoothly (cubic smoothstep over blend_time) from home to
 // q*(tau) (tau = initial_phase while inactive), so the arms are on the trajectory when the jump begins. The phase
-// only moves while `active`; after the primitive ends it holds (the arms stay where the phase left them).
+// only moves while `active`. When the primitive ends (active true -> false) the arms blend, over blend_time,
+// from where they are to `after_end`: home (default: the standing posture the other modes end in), initial
+// (q*(tau_0), ready for the next jump) or hold (stay where the phase stopped). If it becomes active again the
+// arms blend back onto the trajectory at the held phase.
 // update() never allocates and never throws (everything is sized in start()).
 #include <memory>
 #include <string>
@@ -44,6 +47,7 @@ struct OcpPostureParams {
   double blend_time = 1.0;              ///< [s] home -> q*(tau_0) after start(), [0, 10]
   std::string arms = "both";            ///< both | left | right
   std::string interpolation = "samples";  ///< samples (1 kHz rows) | knots (the OCP nodes, N_s + 1 rows)
+  std::string after_end = "home";       ///< home | initial | hold: arm target after the primitive ended
   static const char* defaultsYaml();    ///< the `ocp:` section
   void read(YamlReader& r);
 };
@@ -81,9 +85,11 @@ class OcpPostureStabilizer final : public Stabilizer {
   planner::RowMatrix table_;  // rows uniform in tau, last = first
   double direction_ = 1.0;
   std::vector<int> left_, right_;  // RobotModel joint indices (-1: not driven)
-  Eigen::VectorXd q_home_, q_d_, q_arm_;
+  Eigen::VectorXd q_home_, q_d_, q_arm_, q_from_;  // q_from_: where the current blend started (n)
   Eigen::Matrix<double, 7, 1> mirror_;
-  double tau_ = 0.0, elapsed_ = 0.0;
+  double tau_ = 0.0, elapsed_ = 0.0;  // elapsed_: time since the current blend started
+  bool was_active_ = false, ended_ = false;
+  enum class AfterEnd { kHome, kInitial, kHold } after_end_ = AfterEnd::kHome;
 };
 
 /// The arm-flywheel plan with the embedded defaults, computed once per process (thread-safe) and shared.

@@ -198,6 +198,48 @@ TEST(OcpPosture, BlendGoesSmoothlyFromHomeToTheTrajectoryAndHolds) {
   EXPECT_LT(max_step, 1.5 * std::abs(target[0] - r.home[i]) / 500.0 + 1e-12);
 }
 
+TEST(OcpPosture, AfterThePrimitiveTheArmsBlendToTheChosenTargetWithoutJumps) {
+  Robot r;
+  const auto tr = synthetic();
+  const int i = r.idx("j_arm1_2"), k = r.idx("j_arm2_2");
+  for (const std::string mode : {"home", "initial", "hold"}) {
+    OcpPostureParams p;
+    p.blend_time = 0.2;
+    p.initial_phase = 0.1;
+    p.after_end = mode;
+    OcpPostureStabilizer st(p, tr);
+    st.start(r.names, r.home);
+    double prev = r.home[i], max_step = 0.0;
+    auto tick = [&](double wy, bool active) {
+      st.step(stateWithPitchRate(r, wy), 0.001, active);
+      max_step = std::max(max_step, std::abs(st.postureReference()[i] - prev));
+      prev = st.postureReference()[i];
+    };
+    for (int n = 0; n < 300; ++n) tick(0.0, false);  // start blend
+    for (int n = 0; n < 400; ++n) tick(0.6, true);   // the primitive: phase 0.1 -> 0.34
+    const double tau_end = st.phase();
+    EXPECT_NEAR(tau_end, 0.1 + 0.4 * 0.6, 1e-9);
+    const Eigen::VectorXd at_end = st.postureReference();
+    for (int n = 0; n < 300; ++n) tick(0.6, false);  // ended: phase held, arms blend to the target
+    EXPECT_DOUBLE_EQ(st.phase(), tau_end);
+    Eigen::VectorXd expect(7);
+    interpolatePeriodic(tr->q, mode == "initial" ? 0.1 : tau_end, expect);
+    const double left = mode == "home" ? r.home[i] : expect[1];
+    const double right = mode == "home" ? r.home[k] : -expect[1];
+    EXPECT_NEAR(st.postureReference()[i], left, 1e-12) << mode;
+    EXPECT_NEAR(st.postureReference()[k], right, 1e-12) << mode;
+    if (mode == "hold") {
+      EXPECT_NEAR(st.postureReference()[i], at_end[i], 1e-12);
+    }
+    // active again: back onto the trajectory at the held phase, smoothly
+    for (int n = 0; n < 300; ++n) tick(0.0, true);
+    interpolatePeriodic(tr->q, tau_end, expect);
+    EXPECT_NEAR(st.postureReference()[i], expect[1], 1e-12) << mode;
+    // no jump anywhere: per tick at most the planned speed or a blend step
+    EXPECT_LT(max_step, 0.01) << mode;
+  }
+}
+
 TEST(OcpPosture, ParametersAreValidated) {
   OcpPostureParams p;
   YAML::Node doc = loadYamlString(OcpPostureParams::defaultsYaml(), "<defaults>");
@@ -218,6 +260,7 @@ TEST(OcpPosture, ParametersAreValidated) {
   EXPECT_THROW(bad("gamma_tau: -1"), InputError);
   EXPECT_THROW(bad("initial_phase: 1.0"), InputError);
   EXPECT_THROW(bad("arms: three"), InputError);
+  EXPECT_THROW(bad("after_end: away"), InputError);
   EXPECT_THROW(bad("gamma: 1"), InputError);  // unknown key
   OcpPostureParams missing;
   missing.flywheel_file = "/nonexistent/arm.h5";
