@@ -1,8 +1,8 @@
 // ctest-labels: integration cli
-// `centaur compare`: bad flags exit 2 before anything is written; a small comparison (squat jump, two modes,
-// short runs) writes the documented files (a real PNG, the CSV it plots, md/JSON tables), ends --json with
-// one object, and gives the same pitch histories on 1 and 2 threads (the full CENTAURO stack shares nothing
-// between runs).
+// `centaur compare`: bad flags exit 2 before anything is written; a small comparison (squat jump, modes none
+// and ocp, short runs) writes the documented files (a real PNG, the CSV it plots, md/JSON tables, the plans),
+// ends --json with one object, and gives the same pitch histories on 1 and 2 threads (the full CENTAURO stack
+// shares nothing between runs).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -84,12 +84,12 @@ TEST(CompareCli, BadFlagsExit2AndWriteNothing) {
 TEST(CompareCli, SmallComparisonWritesTablesPlotAndCsvSameOnOneAndTwoThreads) {
   const centaur_test::TempDir dir("compare-cli");
   const std::string a = dir.file("two-threads"), b = dir.file("one-thread");
-  const std::string common = " --jumps squat-jump --modes none,raibert --set duration=0.8 --json";
+  const std::string common = " --jumps squat-jump --modes none,ocp --set duration=0.8 --json";
   const CliRun r = run("compare --out " + a + " --jobs 2" + common, false);
   ASSERT_EQ(r.code, 0) << r.out;
 
-  for (const char* f : {"primitives.h5", "primitives.squat-jump.yaml", "squat-jump-none.h5",
-                        "squat-jump-none.config.yaml", "squat-jump-raibert.h5", "squat-jump-raibert.config.yaml",
+  for (const char* f : {"primitives.h5", "primitives.squat-jump.yaml", "arm-flywheel.h5", "squat-jump-none.h5",
+                        "squat-jump-none.config.yaml", "squat-jump-ocp.h5", "squat-jump-ocp.config.yaml",
                         "compare.md", "compare.json", "compare-pitch.csv", "compare-pitch.png"}) {
     EXPECT_TRUE(fs::is_regular_file(fs::path(a) / f)) << f;
   }
@@ -115,7 +115,7 @@ TEST(CompareCli, SmallComparisonWritesTablesPlotAndCsvSameOnOneAndTwoThreads) {
   for (std::size_t i = 0; i < 2; ++i) {
     const auto& run_j = j["runs"][i];
     EXPECT_EQ(run_j["scenario"], "squat-jump");
-    EXPECT_EQ(run_j["stabilizer"], i == 0 ? "none" : "raibert");
+    EXPECT_EQ(run_j["stabilizer"], i == 0 ? "none" : "ocp");
     EXPECT_TRUE(run_j["outcome"].is_string());
     EXPECT_NEAR(run_j["duration_s"].get<double>(), 0.8, 1e-6);
     for (const char* k : {"peak_pitch_deg", "pitch_rms_deg", "max_torque_ratio", "real_time_factor"}) {
@@ -125,22 +125,26 @@ TEST(CompareCli, SmallComparisonWritesTablesPlotAndCsvSameOnOneAndTwoThreads) {
   }
   const std::string md = readFile((fs::path(a) / "compare.md").string());
   EXPECT_NE(md.find("| squat-jump | none | "), std::string::npos) << md;
-  EXPECT_NE(md.find("| squat-jump | raibert | "), std::string::npos) << md;
+  EXPECT_NE(md.find("| squat-jump | ocp | "), std::string::npos) << md;
+  // The ocp runs got the arm-flywheel trajectory planned once by compare.
+  EXPECT_EQ(j["flywheel"], (fs::path(a) / "arm-flywheel.h5").string());
 
   // CSV: time plus one column per run, one row per control period.
   const std::string csv = readFile((fs::path(a) / "compare-pitch.csv").string());
   std::istringstream lines(csv);
   std::string header;
   std::getline(lines, header);
-  EXPECT_EQ(header, "t_s,squat-jump/none,squat-jump/raibert");
+  EXPECT_EQ(header, "t_s,squat-jump/none,squat-jump/ocp");
   std::size_t rows = 0;
   for (std::string l; std::getline(lines, l);) ++rows;
   EXPECT_EQ(rows, 800u);
 
-  // The same runs one at a time (primitives reused): the same pitch histories, to the printed digit.
+  // The same runs one at a time (plans reused): the same pitch histories, to the printed digit.
   const CliRun r1 = run("compare --out " + b + " --jobs 1 --primitives " + (fs::path(a) / "primitives.h5").string() +
-                        common, false);
+                            " --flywheel " + (fs::path(a) / "arm-flywheel.h5").string() + common,
+                        false);
   ASSERT_EQ(r1.code, 0) << r1.out;
   EXPECT_FALSE(fs::exists(fs::path(b) / "primitives.h5")) << "--primitives must not plan again";
+  EXPECT_FALSE(fs::exists(fs::path(b) / "arm-flywheel.h5")) << "--flywheel must not plan again";
   EXPECT_EQ(readFile((fs::path(b) / "compare-pitch.csv").string()), csv);
 }
