@@ -4,10 +4,12 @@
 //
 // Thread safety: every run builds its own SimConfig, MujocoRobot (own mjModel/mjData) and controller through
 // runScenario(); the scenario registry is only read. Nothing in sim/controller/qp/model holds mutable global
-// state (the planner's reverse-mode AD tape is thread_local), HDF5 is Debian's thread-safe build, and MuJoCo
-// is thread-safe per mjData (its XML loader guards its one global with a mutex). What is NOT thread-safe is
-// Ipopt with MUMPS (Fortran SAVE state): runs that may solve an OCP while they run share an exclusive_group, and
-// runs of the same group never overlap.
+// state (the planner's reverse-mode AD tape is thread_local), HDF5 is Debian's thread-safe build
+// (libhdf5.settings: Threadsafety yes), and MuJoCo is thread-safe per mjData; its XML loader keeps the last
+// parsed model in a global for mj_saveLastXML, guarded by a mutex in 2.x (libmujoco 2.2.2 links
+// pthread_mutex_lock; tests/sim/test_compare_runner.cpp and tests/cli/test_compare_cli.cpp load models
+// concurrently and compare with serial runs). What is NOT thread-safe is Ipopt with MUMPS (Fortran SAVE state):
+// runs that may solve an OCP while they run share an exclusive_group, and runs of the same group never overlap.
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -43,7 +45,7 @@ struct BatchResult {
   double elapsed_s = 0.0;   ///< [s] wall time of the whole run (setup, loop and writing outputs)
 };
 
-/// Called (serialised: never concurrently) when run `index` starts / ends.
+/// Called (serialised: never concurrently, from the worker threads) when run `index` starts / ends; must not throw.
 struct BatchCallbacks {
   std::function<void(std::size_t index)> started;
   std::function<void(std::size_t index, const BatchResult& result, std::size_t done, std::size_t total)> finished;
