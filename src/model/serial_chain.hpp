@@ -14,6 +14,7 @@
 //   chainEndEffector(c, q)               the end-effector point (ee_offset in the last link), in R
 //   chainInverseDynamics(c, q, qd, qdd)  joint torques (recursive Newton-Euler, gravity, rotor armature)
 //   chainAngularMomentum(c, q, qd)       angular momentum of all links about momentum_point (R axes)
+//   chainCom(c, q)                       centre of mass of all links, in R
 // All work on fixed-size stack arrays (at most kMaxChainJoints joints): no heap allocation.
 #include <Eigen/Core>
 
@@ -207,6 +208,21 @@ void chainInverseDynamics(const SerialChain& c, const S* q, const S* qd, const S
     nn = ni;
     tau[i] = dot<S>(P.z[i], ni) + S(c.links[i].armature) * qdd[i];
   }
+}
+
+/// Centre of mass of all links, in R.
+template <class S>
+Eigen::Matrix<S, 3, 1> chainCom(const SerialChain& c, const S* q) {
+  using namespace chain_detail;
+  Poses<S> P;
+  poses(c, q, P);
+  V3<S> s = V3<S>::Zero();
+  double m = 0.0;
+  for (int i = 0; i < c.dof(); ++i) {
+    s += (P.p[i] + mulConst<S>(P.R[i], c.links[i].com)) * S(c.links[i].mass);
+    m += c.links[i].mass;
+  }
+  return s * S(1.0 / m);
 }
 
 /// Angular momentum of all links about c.momentum_point (fixed in R), R axes. Rotor armature excluded.

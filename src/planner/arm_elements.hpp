@@ -60,6 +60,18 @@ struct ArmEndEffectorElement : AdElement<ArmEndEffectorElement, kArmDof, 3> {
   model::SerialChain chain;
 };
 
+/// Inputs: q (7). Outputs (3): the arm's centre of mass in the reference frame [m].
+struct ArmComElement : AdElement<ArmComElement, kArmDof, 3> {
+  explicit ArmComElement(const model::SerialChain& c) : chain(c) {}
+  const char* name() const override { return "arm_com"; }
+  template <class S>
+  void compute(const S* in, S* out) const {
+    const Eigen::Matrix<S, 3, 1> p = model::chainCom(chain, in);
+    for (int a = 0; a < 3; ++a) out[a] = p[a];
+  }
+  model::SerialChain chain;
+};
+
 /// Inputs: q (7), qd (7). Output: the momentum cost of eq. (cost_function_posture_oc) on the axis e (unit,
 /// reference frame): linear mode  -(e . h) (maximise);  tracking mode  (e . h - h_d)^2.
 struct ArmMomentumCostElement : AdElement<ArmMomentumCostElement, 2 * kArmDof, 1> {

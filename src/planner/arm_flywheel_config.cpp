@@ -20,6 +20,7 @@ workspace:
   x: [0.40, 1.00]
   y: [0.10, 0.70]
   z: [0.15, 1.10]
+  com_x_offset: 2.0
 cost:
   momentum_mode: linear
   momentum: 1.0
@@ -72,6 +73,7 @@ ArmFlywheelConfig parseArmFlywheelConfig(const YAML::Node& root, const std::stri
   c.ws_x = readInterval(w, "x", c.ws_x, -2.0, 2.0);
   c.ws_y = readInterval(w, "y", c.ws_y, -2.0, 2.0);
   c.ws_z = readInterval(w, "z", c.ws_z, -2.0, 2.0);
+  w.get("com_x_offset", c.com_x_offset, 0.0, 2.0);
   w.finish();
   auto k = r.child("cost");
   k.get("momentum_mode", c.momentum_mode, {"linear", "tracking"});

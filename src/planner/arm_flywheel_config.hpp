@@ -23,6 +23,7 @@ struct ArmFlywheelConfig {
   Eigen::Vector2d ws_x{0.40, 1.00};  ///< [m] end-effector (hand tip) box in the pelvis frame
   Eigen::Vector2d ws_y{0.10, 0.70};
   Eigen::Vector2d ws_z{0.15, 1.10};
+  double com_x_offset = 2.0;        ///< [m] |arm CoM x - its home value| bound (pelvis frame); 2 = off
   std::string momentum_mode = "linear";  ///< linear: -gamma_h h_y | tracking: gamma_h (h_y - h_d)^2
   double gamma_h = 1.0;             ///< momentum weight
   double h_d = 5.0;                 ///< [N m s] tracking target (tracking mode only)

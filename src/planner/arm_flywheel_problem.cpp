@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/error.hpp"
 #include "common/yaml_reader.hpp"
@@ -19,6 +20,7 @@ std::vector<int> cat(std::initializer_list<std::vector<int>> parts) {
 }
 
 Eigen::VectorXd constant(int n, double v) { return Eigen::VectorXd::Constant(n, v); }
+constexpr double kBig = std::numeric_limits<double>::infinity();  // no bound on that row
 
 }  // namespace
 
@@ -118,6 +120,16 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
   for (int k = 0; k <= N; ++k) {
     const auto& wc = ocp_.addConstraint("workspace", k, box_lo, box_hi);
     ocp_.addTerm(wc, ee, ocp_.indices("q", k));
+  }
+  // Arm CoM x near its home value (the body's balance point moves less with the phase).
+  if (cfg_.com_x_offset < 2.0) {
+    auto com = std::make_shared<ArmComElement>(chain_);
+    const double cx = model::chainCom(chain_, qh.data()).x();
+    const Eigen::Vector3d lo(cx - cfg_.com_x_offset, -kBig, -kBig), hi(cx + cfg_.com_x_offset, kBig, kBig);
+    for (int k = 0; k < N; ++k) {
+      const auto& cc = ocp_.addConstraint("arm_com", k, lo, hi);
+      ocp_.addTerm(cc, com, ocp_.indices("q", k));
+    }
   }
   // Cost (nodes 0..N-1).
   auto mom = std::make_shared<ArmMomentumCostElement>(chain_, Eigen::Vector3d::UnitY(), cfg_.momentum_mode == "tracking",

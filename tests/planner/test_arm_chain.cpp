@@ -132,6 +132,25 @@ TEST(ArmChain, AngularMomentumMatchesRobotModelCentroidalMomentum) {
   }
 }
 
+TEST(ArmChain, CentreOfMassMatchesRobotModel) {
+  Fixture f;
+  std::mt19937 rng(9);
+  double m_arm = 0.0;
+  for (const auto& L : f.chain.links) m_arm += L.mass;
+  const Eigen::VectorXd home = f.chain.homePosture();
+  f.set(home, Eigen::VectorXd::Zero(7));
+  const Eigen::Vector3d G0 = f.robot.com();
+  const Eigen::Vector3d c0 = model::chainCom(f.chain, home.data());
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = f.randomPosture(rng);
+    f.set(q, Eigen::VectorXd::Zero(7));
+    // only the arm moves: M (G - G0) = m_arm (c - c0)
+    const Eigen::Vector3d lhs = f.robot.totalMass() * (f.robot.com() - G0);
+    const Eigen::Vector3d rhs = m_arm * (model::chainCom(f.chain, q.data()) - c0);
+    EXPECT_LT((lhs - rhs).norm(), 1e-9) << lhs.transpose() << " vs " << rhs.transpose();
+  }
+}
+
 // ---- derivatives ----
 
 namespace {
@@ -180,6 +199,7 @@ TEST(ArmChain, EveryArmElementMatchesCentralDifferences) {
   checkElement(ArmEndEffectorElement(f.chain), f, 12);
   checkElement(ArmMomentumCostElement(f.chain, Eigen::Vector3d::UnitY(), false, 0.0), f, 13, 3.0);
   checkElement(ArmMomentumCostElement(f.chain, Eigen::Vector3d::UnitY(), true, 4.0), f, 14, 3.0);
+  checkElement(ArmComElement(f.chain), f, 18);
   checkElement(ArmContinuityElement(0.025), f, 15);
   checkElement(DifferenceElement<14>(), f, 16);
   checkElement(SquaredNorm<7>("v"), f, 17);

@@ -104,6 +104,23 @@ TEST(ArmFlywheel, MomentumIsAboutPlusYAndDominant) {
   EXPECT_NEAR(sum / (tr.samples() - 1), mean_excl_last, 1e-3 * std::abs(mean_excl_last));
 }
 
+TEST(ArmFlywheel, OptionalCentreOfMassBoundHolds) {
+  const ArmFlywheelConfig cfg = loadArmFlywheelConfig("", {"workspace.com_x_offset=0.1"});
+  const ArmFlywheelProblem problem(cfg);
+  const ArmTrajectory tr = problem.toTrajectory(problem.solve());
+  ASSERT_TRUE(tr.solve.solved());
+  const auto& chain = problem.chain();
+  const double cx = model::chainCom(chain, chain.homePosture().data()).x();
+  for (Eigen::Index k = 0; k < tr.samples(); ++k) {
+    const Eigen::VectorXd q = tr.q.row(k).transpose();
+    ASSERT_NEAR(model::chainCom(chain, q.data()).x(), cx, 0.1 + 0.002) << "sample " << k;
+  }
+  // a tighter posture costs momentum, but the arm still spins the same way
+  const double h = tr.h_ang.col(1).mean();
+  EXPECT_GT(h, 0.5);
+  EXPECT_LT(h, plan().h_ang.col(1).mean());
+}
+
 TEST(ArmFlywheel, FileRoundTripAndAppend) {
   const ArmTrajectory& tr = plan();
   centaur_test::TempDir dir;
