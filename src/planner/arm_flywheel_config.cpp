@@ -22,7 +22,7 @@ workspace:
   z: [0.15, 1.10]
   com_x_offset: 2.0
 cost:
-  momentum_mode: linear
+  momentum_mode: tracking
   momentum: 1.0
   momentum_target: 5.0
   joint_velocity: 0.02

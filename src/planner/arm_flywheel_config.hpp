@@ -24,7 +24,7 @@ struct ArmFlywheelConfig {
   Eigen::Vector2d ws_y{0.10, 0.70};
   Eigen::Vector2d ws_z{0.15, 1.10};
   double com_x_offset = 2.0;        ///< [m] |arm CoM x - its home value| bound (pelvis frame); 2 = off
-  std::string momentum_mode = "linear";  ///< linear: -gamma_h h_y | tracking: gamma_h (h_y - h_d)^2
+  std::string momentum_mode = "tracking";  ///< tracking: gamma_h (h_y - h_d)^2 | linear: -gamma_h h_y
   double gamma_h = 1.0;             ///< momentum weight
   double h_d = 5.0;                 ///< [N m s] tracking target (tracking mode only)
   double gamma_qd = 0.02;           ///< weight of qd^T qd

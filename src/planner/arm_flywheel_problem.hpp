@@ -9,7 +9,7 @@
 //   intersection of the left arm's and the mirrored right arm's limits, so the mirror replay is feasible too;
 //   end-effector (hand tip) box in the pelvis frame;
 //   cost sum_{k=0}^{N_s-1} [ gamma_h c_h(h_y,k) + gamma_qd qd_k^T qd_k + gamma_qdd qdd_k^T qdd_k ],
-//   c_h = -h_y (linear, default) or (h_y - h_d)^2 (tracking); h about the torso_2 origin, pelvis axes.
+//   c_h = (h_y - h_d)^2 (tracking, default) or -h_y (linear); h about the torso_2 origin, pelvis axes.
 // Node N is not in the cost (it equals node 0): the cost is invariant under a cyclic shift of the nodes.
 #include <memory>
 

@@ -19,7 +19,7 @@ const char* OcpPostureParams::defaultsYaml() {
   flywheel_group: arm-flywheel   # group in that file
   gamma_tau: 1.0                 # [1/rad] phase per radian of pitch: d tau/dt = gamma_tau omega_y, [0, 100]
   max_speed: 1.0                 # |d tau/dt| <= max_speed / period (1 = the planned speed), [0, 10]
-  initial_phase: 0.0             # tau_0, [0, 1)
+  initial_phase: 0.2             # tau_0, [0, 1): where the arms wait on the plan (chosen in the jump scenarios)
   blend_time: 1.0                # [s] home -> q*(tau_0) after start, [0, 10]
   arms: both                     # both | left | right (right = mirror image of the plan)
   interpolation: samples         # samples (1 kHz rows) | knots (the OCP nodes, as the paper)

@@ -43,7 +43,7 @@ struct OcpPostureParams {
   std::string flywheel_group = "arm-flywheel";
   double gamma_tau = 1.0;               ///< [1/rad] phase per radian of pitch, [0, 100]
   double max_speed = 1.0;               ///< |d tau/dt| <= max_speed / period: 1 = the planned speed, [0, 10]
-  double initial_phase = 0.0;           ///< tau_0 in [0, 1)
+  double initial_phase = 0.2;           ///< tau_0 in [0, 1) (0.2: see docs/stabilizers.md, measured)
   double blend_time = 1.0;              ///< [s] home -> q*(tau_0) after start(), [0, 10]
   std::string arms = "both";            ///< both | left | right
   std::string interpolation = "samples";  ///< samples (1 kHz rows) | knots (the OCP nodes, N_s + 1 rows)

@@ -60,6 +60,7 @@ RobotState stateWithPitchRate(const Robot& r, double wy) {
 OcpPostureParams noBlend() {
   OcpPostureParams p;
   p.blend_time = 0.0;
+  p.initial_phase = 0.0;
   return p;
 }
 
@@ -249,6 +250,7 @@ TEST(OcpPosture, ParametersAreValidated) {
   sec.finish();
   EXPECT_EQ(p.flywheel_file, "");
   EXPECT_DOUBLE_EQ(p.gamma_tau, 1.0);
+  EXPECT_DOUBLE_EQ(p.initial_phase, OcpPostureParams().initial_phase);  // the YAML text and the struct agree
   EXPECT_EQ(p.interpolation, "samples");
   auto bad = [](const std::string& text) {
     YAML::Node n = loadYamlString(text, "t.yaml");
