@@ -161,6 +161,15 @@ TEST(OcpPosture, BothArmsReplayThePlanTheRightOneMirroredOtherJointsAtHome) {
     EXPECT_NEAR(r.home[r.idx("j_arm2_" + std::to_string(j + 1))], s[j] * r.home[r.idx("j_arm1_" + std::to_string(j + 1))],
                 1e-6);
   }
+  // The paper's form: interpolation between the OCP knots (11 rows here, every 10th sample).
+  OcpPostureParams pk = p;
+  pk.interpolation = "knots";
+  OcpPostureStabilizer knots(pk, tr);
+  knots.start(r.names, r.home);
+  knots.step(stateWithPitchRate(r, 0.0), 0.001, true);
+  const double x = 0.25 * 10;  // between knots 2 and 3
+  const double qk = tr->knot_x(2, 0) + (x - 2) * (tr->knot_x(3, 0) - tr->knot_x(2, 0));
+  EXPECT_NEAR(knots.postureReference()[r.idx("j_arm1_1")], qk, 1e-12);
   // Only the left arm: the right one stays at home.
   OcpPostureParams pl = p;
   pl.arms = "left";
