@@ -2,7 +2,8 @@
 // The fixed-base arm chain (model/serial_chain.hpp, numbers from the MJCF) against the whole-robot RobotModel
 // (MuJoCo) with the pelvis at the world origin and only the arm joints moving: end-effector point, inverse
 // dynamics (M qdd + C qd + g rows of the arm) and angular momentum (moved from the robot CoM to the chain's
-// point). Every arm element derivative (Jacobian, weighted Hessian) against central finite differences.
+// point). Every arm element derivative (Jacobian, weighted Hessian) and the assembled NLP derivatives against
+// central finite differences.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "model/chain_from_mjcf.hpp"
 #include "model/robot_model.hpp"
 #include "planner/arm_elements.hpp"
+#include "planner/arm_flywheel_problem.hpp"
 
 using namespace centaur;
 using namespace centaur::planner;
@@ -219,4 +221,56 @@ TEST(ArmChain, ElementsAgreeWithTheChainFunctions) {
   double c;
   ArmMomentumCostElement(f.chain, Eigen::Vector3d::UnitY(), false, 0.0).eval(x.data(), &c);
   EXPECT_NEAR(c, -model::chainAngularMomentum(f.chain, x.data(), x.data() + 7).y(), 1e-12);
+}
+
+// The assembled arm-flywheel NLP (a short horizon, both cost forms and the CoM bound): objective gradient,
+// constraint Jacobian and Lagrangian Hessian against central finite differences at a perturbed guess.
+TEST(ArmChain, AssembledArmFlywheelNlpMatchesCentralDifferences) {
+  for (const std::string mode : {"tracking", "linear"}) {
+    const ArmFlywheelProblem problem(loadArmFlywheelConfig(
+        "", {"horizon.intervals=8", "cost.momentum_mode=" + mode, "workspace.com_x_offset=0.1", "phase_anchor=true"}));
+    const Ocp& ocp = problem.ocp();
+    const int n = ocp.numVariables(), m = ocp.numConstraints();
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    Eigen::VectorXd z = ocp.guess();
+    for (int i = 0; i < n; ++i) z[i] += 0.1 * U(rng) * ocp.scale()[i];
+    Eigen::VectorXd lambda(m);
+    for (int j = 0; j < m; ++j) lambda[j] = U(rng);
+    const double sigma = 0.7, h = 1e-6;
+    Eigen::VectorXd grad(n);
+    ocp.gradient(z.data(), grad.data());
+    std::vector<double> jac(ocp.jacobianNonzeros()), hess(ocp.hessianNonzeros());
+    ocp.jacobian(z.data(), jac.data());
+    ocp.hessian(z.data(), sigma, lambda.data(), hess.data());
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, n), H = Eigen::MatrixXd::Zero(n, n);
+    for (std::size_t k = 0; k < jac.size(); ++k) J(ocp.jacobianRows()[k], ocp.jacobianCols()[k]) += jac[k];
+    for (std::size_t k = 0; k < hess.size(); ++k) {
+      const int r = ocp.hessianRows()[k], c = ocp.hessianCols()[k];
+      H(r, c) += hess[k];
+      if (r != c) H(c, r) += hess[k];
+    }
+    auto lagGrad = [&](const Eigen::VectorXd& zz) {
+      Eigen::VectorXd g(n);
+      ocp.gradient(zz.data(), g.data());
+      std::vector<double> jv(ocp.jacobianNonzeros());
+      ocp.jacobian(zz.data(), jv.data());
+      Eigen::VectorXd out = sigma * g;
+      for (std::size_t k = 0; k < jv.size(); ++k) out[ocp.jacobianCols()[k]] += jv[k] * lambda[ocp.jacobianRows()[k]];
+      return out;
+    };
+    Eigen::VectorXd gp(m), gm(m);
+    for (int i = 0; i < n; ++i) {
+      Eigen::VectorXd zp = z, zm = z;
+      zp[i] += h;
+      zm[i] -= h;
+      ASSERT_LT(relErr(grad[i], (ocp.objective(zp.data()) - ocp.objective(zm.data())) / (2 * h)), 1e-6) << mode << " grad " << i;
+      ocp.constraints(zp.data(), gp.data());
+      ocp.constraints(zm.data(), gm.data());
+      const Eigen::VectorXd col = (gp - gm) / (2 * h);
+      for (int j = 0; j < m; ++j) ASSERT_LT(relErr(J(j, i), col[j]), 1e-6) << mode << " J(" << j << "," << i << ")";
+      const Eigen::VectorXd hcol = (lagGrad(zp) - lagGrad(zm)) / (2 * h);
+      for (int r = 0; r < n; ++r) ASSERT_LT(relErr(H(r, i), hcol[r]), 1e-6) << mode << " H(" << r << "," << i << ")";
+    }
+  }
 }
