@@ -223,9 +223,9 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
   mj_kinematics(m, d);
   mj_comPos(m, d);
   mj_crb(m, d);
+  mj_comVel(m, d);  // frame velocities
   const bool full = detail == Detail::kFull;
   if (full) {
-    mj_comVel(m, d);
     mj_fullM(m, I.M.data(), d->qM);  // row-major nv x nv, same layout as RowMatrixXd
     mj_rne(m, d, 0, I.b.data());
   }

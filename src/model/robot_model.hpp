@@ -53,7 +53,7 @@ class RobotModel {
   /// How much update() computes.
   enum class Detail {
     kFull,      ///< everything below
-    kMomentum,  ///< kinematics, frame poses and Jacobians, CoM, centroidal momentum matrix A, h = A v, Jcom,
+    kMomentum,  ///< kinematics, frame poses, velocities and Jacobians, CoM, centroidal momentum matrix A, h = A v, Jcom,
                 ///< gravity vector g; NOT the mass matrix, the bias forces nor the momentum bias (their
                 ///< queries return the values of the last kFull update). Enough for velocity-level IK and
                 ///< the base estimator, and about half the cost.
