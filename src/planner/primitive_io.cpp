@@ -379,7 +379,15 @@ class Reader {
       rc = H5Literate(file(), H5_INDEX_NAME, H5_ITER_INC, &idx, collectGroup, &names);
     }
     if (rc < 0) throw InputError(path_ + ": cannot list the groups (corrupt file?)" + hdf5Message());
-    return names;
+    // Other kinds of groups may share the file (e.g. an arm-flywheel trajectory, attribute kind =
+    // "arm-trajectory"): lower-body primitives have no `kind` attribute.
+    std::vector<std::string> primitives;
+    for (const std::string& n : names) {
+      Handle gid(H5Gopen2(file(), n.c_str(), H5P_DEFAULT), H5Gclose);
+      if (gid.valid() && H5Aexists(gid.get(), "kind") > 0) continue;
+      primitives.push_back(n);
+    }
+    return primitives;
   }
 
   /// Dataset `name` in `loc` as doubles (row-major). `want` gives the expected shape; 0 = any extent.

@@ -156,6 +156,32 @@ TEST(PrimitiveIo, AppendAddsGroupsKeepsOthersAndReplacesSameName) {
   EXPECT_EQ(planner::listPrimitives(path), std::vector<std::string>{"half-squat-jump"});
 }
 
+TEST(PrimitiveIo, GroupsOfAnotherKindAreNotPrimitives) {
+  // An arm-flywheel trajectory (attribute kind = "arm-trajectory") may share the file: the jump readers skip it.
+  TempDir dir;
+  const std::string path = dir.file("db.h5");
+  const Primitive a = centaur::test::makeSyntheticJump("squat-jump");
+  planner::writePrimitives(path, {a});
+  {
+    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    const hid_t g = H5Gcreate2(f, "arm-flywheel", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, 14);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t attr = H5Acreate2(g, "kind", type, space, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(attr, type, "arm-trajectory");
+    H5Aclose(attr);
+    H5Sclose(space);
+    H5Tclose(type);
+    H5Gclose(g);
+    H5Fclose(f);
+  }
+  EXPECT_EQ(planner::listPrimitives(path), std::vector<std::string>{"squat-jump"});
+  ASSERT_EQ(planner::readPrimitives(path).size(), 1u);
+  EXPECT_THROW(planner::readPrimitive(path, "arm-flywheel"), InputError);
+}
+
 TEST(PrimitiveIo, UnwritableLocationThrowsAndLeavesNothing) {
   TempDir dir;
   const std::string blocker = dir.file("not-a-directory");
