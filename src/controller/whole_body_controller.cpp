@@ -172,6 +172,10 @@ void WholeBodyController::setPostureReference(const Eigen::Ref<const Eigen::Vect
   if (posture_) posture_->setReference(q_d);
 }
 
+void WholeBodyController::setPostureVelocity(const Eigen::Ref<const Eigen::VectorXd>& qd_d) {
+  if (posture_) posture_->setVelocityReference(qd_d);
+}
+
 void WholeBodyController::setPelvisAngularVelocity(const Eigen::Vector3d& w_omega_d) {
   if (pelvis_) pelvis_->setReference(w_omega_d);
 }

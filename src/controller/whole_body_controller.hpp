@@ -101,6 +101,8 @@ class WholeBodyController final : public Controller {
   void setBaseAcceleration(const Eigen::Ref<const Eigen::VectorXd>& vdot_d) { vdot_d_ = vdot_d; }
   /// Posture reference of all n joints [rad] (e.g. a stabilizer's upper-body targets).
   void setPostureReference(const Eigen::Ref<const Eigen::VectorXd>& q_d);
+  /// Velocity feed-forward of the posture reference, all n joints [rad/s] (default 0).
+  void setPostureVelocity(const Eigen::Ref<const Eigen::VectorXd>& qd_d);
   void setPelvisAngularVelocity(const Eigen::Vector3d& w_omega_d);
   void setAngularMomentum(const Eigen::Vector3d& h_ang_d);
   /// Unit surface normal (W) of each wheel's (current or next) contact: used by the contact detector and the

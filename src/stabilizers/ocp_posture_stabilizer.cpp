@@ -24,6 +24,7 @@ const char* OcpPostureParams::defaultsYaml() {
   arms: both                     # both | left | right (right = mirror image of the plan)
   interpolation: samples         # samples (1 kHz rows) | knots (the OCP nodes, as the paper)
   after_end: home                # arms after the primitive: home | initial (q*(tau_0)) | hold, blended
+  velocity_feedforward: false    # also feed d q*/d tau * d tau/dt to the posture task (docs/jumps.md)
 )";
 }
 
@@ -38,6 +39,7 @@ void OcpPostureParams::read(YamlReader& r) {
   r.get("arms", arms, {"both", "left", "right"});
   r.get("interpolation", interpolation, {"samples", "knots"});
   r.get("after_end", after_end, {"home", "initial", "hold"});
+  r.get("velocity_feedforward", velocity_feedforward);
   if (flywheel_group.empty()) r.fail("flywheel_group", "must not be empty");
 }
 
@@ -144,6 +146,7 @@ void OcpPostureStabilizer::start(const std::vector<std::string>& names, const Ei
   }
   q_home_ = q_home;
   q_d_ = q_home;
+  qd_d_.setZero(q_home.size());
   q_from_ = q_home;
   q_arm_.setZero(7);
   tau_ = params_.initial_phase;
@@ -164,9 +167,10 @@ void OcpPostureStabilizer::step(const RobotState& state, double dt, bool active)
   const bool dt_ok = std::isfinite(dt) && dt > 0.0;
   if (dt_ok) elapsed_ += dt;
   const double w = state.imu_omega.y();
+  double rate = 0.0;
   if (active && dt_ok && std::isfinite(w)) {
     const double rmax = params_.max_speed / traj_->period;
-    const double rate = std::clamp(direction_ * params_.gamma_tau * w, -rmax, rmax);
+    rate = std::clamp(direction_ * params_.gamma_tau * w, -rmax, rmax);
     tau_ += rate * dt;
     tau_ -= std::floor(tau_);  // periodic plan: wrap into [0, 1)
   }
@@ -177,21 +181,30 @@ void OcpPostureStabilizer::step(const RobotState& state, double dt, bool active)
     const double x = std::min(1.0, elapsed_ / params_.blend_time);
     s = x * x * (3.0 - 2.0 * x);
   }
+  // slope of the interpolated segment (d q*/d tau), for the velocity feed-forward while replaying
+  const long M = table_.rows() - 1;
+  const long k = std::clamp(static_cast<long>(std::floor(tau_ * M)), 0L, M - 1);
+  const bool replaying = active && !ended_ && s >= 1.0;
   for (int j = 0; j < 7; ++j) {
+    const double qd_arm = replaying ? rate * M * (table_(k + 1, j) - table_(k, j)) : 0.0;
     if (left_[j] >= 0) {
       const int i = left_[j];
       q_d_[i] = (1.0 - s) * q_from_[i] + s * (home ? q_home_[i] : q_arm_[j]);
+      qd_d_[i] = qd_arm;
     }
     if (right_[j] >= 0) {
       const int i = right_[j];
       q_d_[i] = (1.0 - s) * q_from_[i] + s * (home ? q_home_[i] : mirror_[j] * q_arm_[j]);
+      qd_d_[i] = mirror_[j] * qd_arm;
     }
   }
 }
 
 void OcpPostureStabilizer::update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept {
   step(state, dt, active);
-  if (q_d_.size() > 0) wbc.setPostureReference(q_d_);
+  if (q_d_.size() == 0) return;
+  wbc.setPostureReference(q_d_);
+  if (params_.velocity_feedforward) wbc.setPostureVelocity(qd_d_);
 }
 
 }  // namespace centaur

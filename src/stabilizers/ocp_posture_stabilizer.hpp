@@ -48,6 +48,7 @@ struct OcpPostureParams {
   std::string arms = "both";            ///< both | left | right
   std::string interpolation = "samples";  ///< samples (1 kHz rows) | knots (the OCP nodes, N_s + 1 rows)
   std::string after_end = "home";       ///< home | initial | hold: arm target after the primitive ended
+  bool velocity_feedforward = false;    ///< feed d q*/d tau * d tau/dt to the posture task too
   static const char* defaultsYaml();    ///< the `ocp:` section
   void read(YamlReader& r);
 };
@@ -72,6 +73,8 @@ class OcpPostureStabilizer final : public Stabilizer {
   /// The part of update() that computes the reference (no controller needed): advances the phase and q_d.
   void step(const RobotState& state, double dt, bool active) noexcept;
   const Eigen::VectorXd& postureReference() const { return q_d_; }
+  /// Its velocity feed-forward [rad/s]: the slope of the interpolated segment times d tau/dt (0 while blending).
+  const Eigen::VectorXd& postureVelocity() const { return qd_d_; }
   double phase() const { return tau_; }
   /// +1 if the phase advances with omega_y > 0, -1 if it runs backwards (plan with negative mean h_y).
   double direction() const { return direction_; }
@@ -85,7 +88,8 @@ class OcpPostureStabilizer final : public Stabilizer {
   planner::RowMatrix table_;  // rows uniform in tau, last = first
   double direction_ = 1.0;
   std::vector<int> left_, right_;  // RobotModel joint indices (-1: not driven)
-  Eigen::VectorXd q_home_, q_d_, q_arm_, q_from_;  // q_from_: where the current blend started (n)
+  Eigen::VectorXd q_home_, q_d_, q_arm_, q_from_;
+  Eigen::VectorXd qd_d_;  // velocity feed-forward of q_d (n): d q*/d tau * d tau/dt while replaying (lead)  // q_from_: where the current blend started (n)
   Eigen::Matrix<double, 7, 1> mirror_;
   double tau_ = 0.0, elapsed_ = 0.0;  // elapsed_: time since the current blend started
   bool was_active_ = false, ended_ = false;

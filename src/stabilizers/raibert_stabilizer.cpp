@@ -17,6 +17,7 @@ const char* RaibertParams::defaultsYaml() {
   directions: [-1, -1, 1, 1]     # sign giving +y angular momentum per joint
   max_offset: 1.5                # [rad] |q_d - q_home|, [0, 3.2]
   leak_rate: 0.2                 # [1/s] pull of q_d back to home, [0, 100]
+  velocity_feedforward: false    # also feed d q_d/dt to the posture task (docs/jumps.md: worse landings)
 )";
 }
 
@@ -35,6 +36,7 @@ void RaibertParams::read(YamlReader& r) {
   }
   r.get("max_offset", max_offset, 0.0, 3.2);
   r.get("leak_rate", leak_rate, 0.0, 100.0);
+  r.get("velocity_feedforward", velocity_feedforward);
   if (gains.size() != joints.size()) r.fail("gains", "one gain per joint (" + std::to_string(joints.size()) + ")");
   if (directions.size() != joints.size()) r.fail("directions", "one direction per joint");
   for (double g : gains) {
@@ -56,6 +58,7 @@ void RaibertStabilizer::start(const std::vector<std::string>& names, const Eigen
   }
   q_home_ = q_home;
   q_d_ = q_home;
+  qd_d_.setZero(q_home.size());
 }
 
 void RaibertStabilizer::update(const RobotState& state, double dt, bool, WholeBodyController& wbc) noexcept {
@@ -66,10 +69,12 @@ void RaibertStabilizer::update(const RobotState& state, double dt, bool, WholeBo
       double off = q_d_[i] - q_home_[i];
       off += params_.gains[s] * params_.directions[s] * w * dt - params_.leak_rate * dt * off;
       off = std::clamp(off, -params_.max_offset, params_.max_offset);
+      qd_d_[i] = (q_home_[i] + off - q_d_[i]) / dt;  // what the law moved q_d by, per second
       q_d_[i] = q_home_[i] + off;
     }
   }
   wbc.setPostureReference(q_d_);
+  if (params_.velocity_feedforward) wbc.setPostureVelocity(qd_d_);
 }
 
 }  // namespace centaur

@@ -26,6 +26,7 @@ struct RaibertParams {
   std::vector<double> directions = {-1.0, -1.0, 1.0, 1.0};  ///< +-1 per joint
   double max_offset = 1.5;                                  ///< [rad] |q_d - q_home| per joint, [0, 3.2]
   double leak_rate = 0.2;                                   ///< [1/s] pull of q_d towards home, [0, 100]
+  bool velocity_feedforward = false;                        ///< feed d q_d/dt to the posture task too
   static const char* defaultsYaml();                        ///< the `raibert:` section
   void read(YamlReader& r);
 };
@@ -39,11 +40,13 @@ class RaibertStabilizer final : public Stabilizer {
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
   void update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept override;
   const Eigen::VectorXd& postureReference() const { return q_d_; }
+  /// d q_d / dt of the last update [rad/s] (fed to the posture task if velocity_feedforward).
+  const Eigen::VectorXd& postureVelocity() const { return qd_d_; }
 
  private:
   RaibertParams params_;
   std::vector<int> idx_;
-  Eigen::VectorXd q_home_, q_d_;
+  Eigen::VectorXd q_home_, q_d_, qd_d_;  // qd_d_: d q_d / dt, the posture's velocity feed-forward
 };
 
 }  // namespace centaur

@@ -66,6 +66,11 @@ TEST(Raibert, PostureOffsetIsTheIntegratedPitchRate) {
     const int i = m.jointIndex(p.joints[s]);
     EXPECT_NEAR(stab.postureReference()[i] - m.homeJoints()[i], p.gains[s] * p.directions[s] * 0.05, 1e-9);
   }
+  // the velocity feed-forward is the law's rate: gain * direction * omega_y (leak off, not clamped)
+  for (std::size_t s = 0; s < p.joints.size(); ++s) {
+    const int i = m.jointIndex(p.joints[s]);
+    EXPECT_NEAR(stab.postureVelocity()[i], p.gains[s] * p.directions[s] * -0.25, 1e-9);
+  }
   // clamped at max_offset
   state.imu_omega.y() = 100.0;
   for (int k = 0; k < 1000; ++k) stab.update(state, dt, true, wbc);
