@@ -6,14 +6,8 @@
 
 namespace centaur {
 
-const char* StandingParams::defaultsYaml() {
-  return R"(controller:
-  feedforward: true         # gravity-compensating torque feed-forward (static wheel forces)
-  use_base_estimator: true  # base pose from the BaseEstimator (false: IMU orientation, position 0)
-  tangential_weight: 100.0  # [-] cost of tangential vs normal wheel forces in the split, [1, 1e6]
-  friction: 0.6             # [-] friction coefficient of the cone projection, [0.05, 5]
-  wheel_radius: 0.078       # [m] wheel radius (contact point below the wheel centre), [0.01, 0.5]
-  gains:                    # joint impedance per group: kp [Nm/rad] in [0, 1e5], kd [Nm s/rad] in [0, 1e3]
+const char* jointGainsDefaultsYaml() {
+  return R"(  gains:                    # joint impedance per group: kp [Nm/rad] in [0, 1e5], kd [Nm s/rad] in [0, 1e3]
     leg: {kp: 1000.0, kd: 10.0}        # hip_yaw, hip_pitch, knee_pitch
     ankle_pitch: {kp: 500.0, kd: 5.0}
     ankle_yaw: {kp: 100.0, kd: 1.0}
@@ -25,16 +19,10 @@ const char* StandingParams::defaultsYaml() {
 )";
 }
 
-void StandingParams::read(YamlReader& r) {
-  r.get("feedforward", feedforward);
-  r.get("use_base_estimator", use_base_estimator);
-  r.get("tangential_weight", tangential_weight, 1.0, 1e6);
-  r.get("friction", friction, 0.05, 5.0);
-  r.get("wheel_radius", wheel_radius, 0.01, 0.5);
-  auto g = r.child("gains");
+void readJointGains(YamlReader& g, StandingParams& p) {
   for (auto& [name, gains] : std::vector<std::pair<const char*, JointGains*>>{
-           {"leg", &leg}, {"ankle_pitch", &ankle_pitch}, {"ankle_yaw", &ankle_yaw}, {"wheel", &wheel},
-           {"torso", &torso}, {"arm", &arm}, {"wrist", &wrist}, {"other", &other}}) {
+           {"leg", &p.leg}, {"ankle_pitch", &p.ankle_pitch}, {"ankle_yaw", &p.ankle_yaw}, {"wheel", &p.wheel},
+           {"torso", &p.torso}, {"arm", &p.arm}, {"wrist", &p.wrist}, {"other", &p.other}}) {
     auto c = g.child(name);
     c.get("kp", gains->kp, 0.0, 1e5);
     c.get("kd", gains->kd, 0.0, 1e3);
@@ -45,6 +33,7 @@ void StandingParams::read(YamlReader& r) {
 
 namespace {
 bool contains(const std::string& s, const char* part) { return s.find(part) != std::string::npos; }
+}  // namespace
 
 JointGains gainsFor(const std::string& name, const StandingParams& p) {
   if (contains(name, "hip_yaw") || contains(name, "hip_pitch") || contains(name, "knee_pitch")) return p.leg;
@@ -58,7 +47,27 @@ JointGains gainsFor(const std::string& name, const StandingParams& p) {
   }
   return p.other;
 }
-}  // namespace
+
+const char* StandingParams::defaultsYaml() {
+  static const std::string text = std::string(R"(controller:
+  feedforward: true         # gravity-compensating torque feed-forward (static wheel forces)
+  use_base_estimator: true  # base pose from the BaseEstimator (false: IMU orientation, position 0)
+  tangential_weight: 100.0  # [-] cost of tangential vs normal wheel forces in the split, [1, 1e6]
+  friction: 0.6             # [-] friction coefficient of the cone projection, [0.05, 5]
+  wheel_radius: 0.078       # [m] wheel radius (contact point below the wheel centre), [0.01, 0.5]
+)") + jointGainsDefaultsYaml();
+  return text.c_str();
+}
+
+void StandingParams::read(YamlReader& r) {
+  r.get("feedforward", feedforward);
+  r.get("use_base_estimator", use_base_estimator);
+  r.get("tangential_weight", tangential_weight, 1.0, 1e6);
+  r.get("friction", friction, 0.05, 5.0);
+  r.get("wheel_radius", wheel_radius, 0.01, 0.5);
+  auto g = r.child("gains");
+  readJointGains(g, *this);
+}
 
 StandingController::StandingController(const std::string& mjcf_path, const StandingParams& params)
     : params_(params), model_(std::make_unique<RobotModel>(mjcf_path)) {

@@ -62,6 +62,13 @@ struct StandingParams {
   void read(YamlReader& r);
 };
 
+/// The `gains:` lines of a `controller:` section (documented defaults, indented by two spaces).
+const char* jointGainsDefaultsYaml();
+/// Read a `gains:` section (strict) into the joint groups of p.
+void readJointGains(YamlReader& gains, StandingParams& p);
+/// The impedance gains of a joint, by its name (the groups above).
+JointGains gainsFor(const std::string& joint_name, const StandingParams& p);
+
 class StandingController final : public Controller {
  public:
   /// Loads the controller's own RobotModel from the MJCF (the model never reads the simulator's state).

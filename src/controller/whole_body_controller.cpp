@@ -27,20 +27,6 @@ const char* toString(WholeBodyStatus status) {
 namespace {
 bool contains(const std::string& s, const char* part) { return s.find(part) != std::string::npos; }
 
-// Same joint groups as the standing controller (StandingParams documents them).
-JointGains gainsFor(const std::string& name, const StandingParams& p) {
-  if (contains(name, "hip_yaw") || contains(name, "hip_pitch") || contains(name, "knee_pitch")) return p.leg;
-  if (contains(name, "ankle_pitch")) return p.ankle_pitch;
-  if (contains(name, "ankle_yaw")) return p.ankle_yaw;
-  if (contains(name, "wheel")) return p.wheel;
-  if (contains(name, "torso")) return p.torso;
-  if (name.rfind("j_arm", 0) == 0) {
-    const char last = name.back();
-    return (last >= '5' && last <= '7') ? p.wrist : p.arm;
-  }
-  return p.other;
-}
-
 template <class T>
 std::shared_ptr<T> findTask(const LoadedStack& s, const std::string& name) {
   auto it = s.tasks.find(name);

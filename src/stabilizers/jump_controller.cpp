@@ -18,16 +18,7 @@ std::string JumpControllerParams::defaultsYaml() {
   friction: 0.5             # [-] mu of the force distribution's pyramid, [0.01, 5]
   contact_on: 60.0          # [N] contact detector: touch-down threshold, (off, 1e4]
   contact_off: 30.0         # [N] contact detector: lift-off threshold, [0, on)
-  gains:                    # joint impedance per group: kp [Nm/rad] in [0, 1e5], kd [Nm s/rad] in [0, 1e3]
-    leg: {kp: 1000.0, kd: 10.0}        # hip_yaw, hip_pitch, knee_pitch
-    ankle_pitch: {kp: 500.0, kd: 5.0}
-    ankle_yaw: {kp: 100.0, kd: 1.0}
-    wheel: {kp: 100.0, kd: 2.0}        # j_wheel_* (held at the initial angle)
-    torso: {kp: 500.0, kd: 5.0}
-    arm: {kp: 300.0, kd: 3.0}          # j_arm*_1 .. j_arm*_4
-    wrist: {kp: 50.0, kd: 0.5}         # j_arm*_5 .. j_arm*_7
-    other: {kp: 100.0, kd: 1.0}        # any other joint
-)";
+)" + std::string(jointGainsDefaultsYaml());
 }
 
 void JumpControllerParams::read(YamlReader& r) {
@@ -42,16 +33,7 @@ void JumpControllerParams::read(YamlReader& r) {
   r.get("contact_off", wbc.detector.off_threshold, 0.0, 1e4);
   if (!(wbc.detector.off_threshold < wbc.detector.on_threshold)) r.fail("contact_off", "must be below contact_on");
   auto g = r.child("gains");
-  StandingParams& p = wbc.impedance;
-  for (auto& [name, gains] : std::vector<std::pair<const char*, JointGains*>>{
-           {"leg", &p.leg}, {"ankle_pitch", &p.ankle_pitch}, {"ankle_yaw", &p.ankle_yaw}, {"wheel", &p.wheel},
-           {"torso", &p.torso}, {"arm", &p.arm}, {"wrist", &p.wrist}, {"other", &p.other}}) {
-    auto c = g.child(name);
-    c.get("kp", gains->kp, 0.0, 1e5);
-    c.get("kd", gains->kd, 0.0, 1e3);
-    c.finish();
-  }
-  g.finish();
+  readJointGains(g, wbc.impedance);
 }
 
 JumpController::JumpController(const std::string& mjcf_path, const planner::Primitive& primitive,
