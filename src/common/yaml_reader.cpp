@@ -101,6 +101,13 @@ void YamlReader::get(const std::string& key, Eigen::Ref<Eigen::VectorXd> value, 
   }
 }
 
+void YamlReader::getInterval(const std::string& key, Eigen::Vector2d& value, double lo, double hi) {
+  Eigen::VectorXd x = value;
+  get(key, x, lo, hi);
+  if (x[0] >= x[1]) fail(key, "expected [lower, upper] with lower < upper");
+  value = x;
+}
+
 void YamlReader::get(const std::string& key, std::vector<double>& value, double lo, double hi) {
   if (!has(key)) return;
   used_.insert(key);

@@ -28,6 +28,8 @@ class YamlReader {
   void get(const std::string& key, std::string& value, const std::vector<std::string>& allowed = {});
   /// Fixed-size vector (YAML sequence of exactly value.size() numbers), each element in [lo, hi].
   void get(const std::string& key, Eigen::Ref<Eigen::VectorXd> value, double lo, double hi);
+  /// [lower, upper] with both in [lo, hi] and lower < upper (InputError naming the key otherwise).
+  void getInterval(const std::string& key, Eigen::Vector2d& value, double lo, double hi);
   /// Variable-length vector of numbers, each in [lo, hi].
   void get(const std::string& key, std::vector<double>& value, double lo, double hi);
 

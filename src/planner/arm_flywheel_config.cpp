@@ -40,12 +40,6 @@ solver:
   print_level: 0
 )";
 
-Eigen::Vector2d readInterval(YamlReader& r, const std::string& key, Eigen::Vector2d v, double lo, double hi) {
-  Eigen::VectorXd x = v;
-  r.get(key, x, lo, hi);
-  if (x[0] >= x[1]) r.fail(key, "expected [lower, upper] with lower < upper");
-  return x;
-}
 
 }  // namespace
 
@@ -70,9 +64,9 @@ ArmFlywheelConfig parseArmFlywheelConfig(const YAML::Node& root, const std::stri
   l.get("torque_scale", c.torque_scale, 0.05, 1.0);
   l.finish();
   auto w = r.child("workspace");
-  c.ws_x = readInterval(w, "x", c.ws_x, -2.0, 2.0);
-  c.ws_y = readInterval(w, "y", c.ws_y, -2.0, 2.0);
-  c.ws_z = readInterval(w, "z", c.ws_z, -2.0, 2.0);
+  w.getInterval("x", c.ws_x, -2.0, 2.0);
+  w.getInterval("y", c.ws_y, -2.0, 2.0);
+  w.getInterval("z", c.ws_z, -2.0, 2.0);
   w.get("com_x_offset", c.com_x_offset, 0.0, 2.0);
   w.finish();
   auto k = r.child("cost");
@@ -85,15 +79,7 @@ ArmFlywheelConfig parseArmFlywheelConfig(const YAML::Node& root, const std::stri
   r.get("phase_anchor", c.phase_anchor);
   r.get("sample_dt", c.sample_dt, 1e-4, 0.1);
   auto s = r.child("solver");
-  s.get("tol", c.solver.tol, 1e-12, 1.0);
-  s.get("constr_viol_tol", c.solver.constr_viol_tol, 1e-12, 1.0);
-  s.get("max_iter", c.solver.max_iter, 0, 100000);
-  s.get("max_cpu_time", c.solver.max_cpu_time, 0.01, 1e6);
-  s.get("hessian", c.solver.hessian, {"exact", "limited-memory"});
-  s.get("mu_strategy", c.solver.mu_strategy, {"adaptive", "monotone"});
-  s.get("user_scaling", c.solver.user_scaling);
-  s.get("print_level", c.solver.print_level, 0, 12);
-  s.finish();
+  readSolverSettings(s, c.solver);
   r.finish();
   if (c.momentum_mode == "linear" && c.gamma_qd <= 0.0) {
     throw InputError(label, "cost.joint_velocity",

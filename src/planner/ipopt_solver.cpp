@@ -1,5 +1,7 @@
 #include "planner/ipopt_solver.hpp"
 
+#include "common/yaml_reader.hpp"
+
 #include <IpIpoptApplication.hpp>
 #include <IpIpoptData.hpp>
 #include <IpTNLP.hpp>
@@ -170,6 +172,18 @@ SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s) {
   if (result.info.status == "not_run") result.info.status = "failed";
   result.ipopt_status = std::to_string(static_cast<int>(st));
   return result;
+}
+
+void readSolverSettings(YamlReader& s, SolverSettings& c) {
+  s.get("tol", c.tol, 1e-12, 1.0);
+  s.get("constr_viol_tol", c.constr_viol_tol, 1e-12, 1.0);
+  s.get("max_iter", c.max_iter, 0, 100000);
+  s.get("max_cpu_time", c.max_cpu_time, 0.01, 1e6);
+  s.get("hessian", c.hessian, {"exact", "limited-memory"});
+  s.get("mu_strategy", c.mu_strategy, {"adaptive", "monotone"});
+  s.get("user_scaling", c.user_scaling);
+  s.get("print_level", c.print_level, 0, 12);
+  s.finish();
 }
 
 }  // namespace centaur::planner

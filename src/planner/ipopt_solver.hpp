@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "common/yaml_reader.hpp"
 #include "planner/ocp.hpp"
 #include "planner/primitive.hpp"
 
@@ -22,6 +23,9 @@ struct SolverSettings {
   int print_level = 0;            ///< Ipopt's own output (0 = silent)
   bool progress = false;          ///< one line per iteration on stderr
 };
+
+/// Read a `solver:` section (strict: finishes it). Keys and ranges as documented in config/*.yaml.
+void readSolverSettings(centaur::YamlReader& section, SolverSettings& s);
 
 struct SolveResult {
   SolveInfo info;

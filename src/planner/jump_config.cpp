@@ -70,12 +70,6 @@ cost:
   base_pose: 50.0
 )";
 
-Eigen::Vector2d readInterval(YamlReader& r, const std::string& key, Eigen::Vector2d v, double lo, double hi) {
-  Eigen::VectorXd x = v;
-  r.get(key, x, lo, hi);
-  if (x[0] >= x[1]) r.fail(key, "expected [lower, upper] with lower < upper");
-  return x;
-}
 
 }  // namespace
 
@@ -130,11 +124,11 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   r.get("wheel_radius", c.wheel_radius, 0.0, 1.0);
 
   auto w = r.child("workspace");
-  c.workspace.front_x = readInterval(w, "front_x", c.workspace.front_x, -2, 2);
-  c.workspace.rear_x = readInterval(w, "rear_x", c.workspace.rear_x, -2, 2);
-  c.workspace.left_y = readInterval(w, "left_y", c.workspace.left_y, -2, 2);
-  c.workspace.right_y = readInterval(w, "right_y", c.workspace.right_y, -2, 2);
-  c.workspace.z = readInterval(w, "z", c.workspace.z, -2, 2);
+  w.getInterval("front_x", c.workspace.front_x, -2, 2);
+  w.getInterval("rear_x", c.workspace.rear_x, -2, 2);
+  w.getInterval("left_y", c.workspace.left_y, -2, 2);
+  w.getInterval("right_y", c.workspace.right_y, -2, 2);
+  w.getInterval("z", c.workspace.z, -2, 2);
   w.finish();
   // The initial stance must lie inside the workspace box.
   for (int i = 0; i < 4; ++i) {
@@ -180,15 +174,7 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   k.finish();
 
   auto s = r.child("solver");
-  s.get("tol", c.solver.tol, 1e-12, 1.0);
-  s.get("constr_viol_tol", c.solver.constr_viol_tol, 1e-12, 1.0);
-  s.get("max_iter", c.solver.max_iter, 0, 100000);
-  s.get("max_cpu_time", c.solver.max_cpu_time, 0.01, 1e6);
-  s.get("hessian", c.solver.hessian, {"exact", "limited-memory"});
-  s.get("mu_strategy", c.solver.mu_strategy, {"adaptive", "monotone"});
-  s.get("user_scaling", c.solver.user_scaling);
-  s.get("print_level", c.solver.print_level, 0, 12);
-  s.finish();
+  readSolverSettings(s, c.solver);
   r.finish();
 
   // A squat jump whose target is below the start, or unreachable by construction, is bad input.
