@@ -26,6 +26,7 @@ workspace:
   left_y: [0.1, 0.5]
   right_y: [-0.5, -0.1]
   z: [-0.76, -0.46]
+  reach: 0.0
 contact:
   friction: pyramid
   mu: 0.5
@@ -129,6 +130,7 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   w.getInterval("left_y", c.workspace.left_y, -2, 2);
   w.getInterval("right_y", c.workspace.right_y, -2, 2);
   w.getInterval("z", c.workspace.z, -2, 2);
+  w.get("reach", c.workspace.reach, 0.0, 2.0);
   w.finish();
   // The initial stance must lie inside the workspace box.
   for (int i = 0; i < 4; ++i) {

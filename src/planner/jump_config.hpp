@@ -27,7 +27,8 @@ struct WorkspaceConfig {  ///< foot points in the waist frame [m]
   Eigen::Vector2d rear_x{-0.6, -0.1};
   Eigen::Vector2d left_y{0.1, 0.5};
   Eigen::Vector2d right_y{-0.5, -0.1};
-  Eigen::Vector2d z{-0.80, -0.435};
+  Eigen::Vector2d z{-0.76, -0.46};
+  double reach = 0.0;  ///< [m] max hip -> foot distance (a sphere around each hip point; 0 = off)
 };
 
 struct ContactConfig {

@@ -83,6 +83,16 @@ void JumpProblem::buildVariables() {
     qlo.segment<3>(7 + 3 * i) = lo - cfg_.model.hip[i];
     qhi.segment<3>(7 + 3 * i) = hi - cfg_.model.hip[i];
   }
+  if (W.reach > 0.0) {  // leg reach: |hip -> foot| <= reach at every node (the box alone lets a stretched leg
+                        // with its foot far forward ask for more than the robot's leg reaches)
+    auto reach = std::make_shared<LegReachElement>();
+    for (int k = 1; k <= N_; ++k) {
+      for (int i = 0; i < 4; ++i) {
+        ocp_.addTerm(ocp_.addConstraint("leg_reach", k, constant(1, 0.0), constant(1, W.reach * W.reach)), reach,
+                     idx("q", k, 7 + 3 * i, 3));
+      }
+    }
+  }
   const double vmax = cfg_.limits.velocity, amax = cfg_.limits.acceleration;
   for (int k = 1; k <= N_; ++k) {
     ocp_.setBounds("q", k, qlo, qhi);

@@ -124,6 +124,15 @@ struct FootPointElement : AdElement<FootPointElement, 10, 3> {
   Eigen::Vector3d c;
 };
 
+/// Inputs: q_ci (3, hip -> foot in the waist frame). Output (1): |q_ci|^2 (leg reach, bounded above by r^2).
+struct LegReachElement : AdElement<LegReachElement, 3, 1> {
+  const char* name() const override { return "leg_reach"; }
+  template <class S>
+  void compute(const S* in, S* out) const {
+    out[0] = in[0] * in[0] + in[1] * in[1] + in[2] * in[2];
+  }
+};
+
 /// Inputs: [p_u, rho, q_ci] at node k (10) and at node k+1 (10). Outputs (3): p_foot(k+1) - p_foot(k).
 struct FootDisplacementElement : AdElement<FootDisplacementElement, 20, 3> {
   FootDisplacementElement(const TemplateParams& p, int foot) : P(p), i(foot) {}

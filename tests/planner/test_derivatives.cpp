@@ -147,6 +147,7 @@ TEST(Derivatives, EveryElementMatchesCentralDifferences) {
   checkElement(FrictionConeElement(Eigen::Vector3d(0.1, 0.2, 1.0), 0.5, 1.0, 10.0), 72);
   checkElement(SquaredError<4>(Eigen::Vector4d(1, 0, 0, 0)), 73);
   checkElement(SquaredDifference<3>(), 74);
+  checkElement(LegReachElement(), 75);
 }
 
 TEST(Derivatives, AssembledNlpMatchesCentralDifferences) {

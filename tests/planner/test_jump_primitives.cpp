@@ -163,3 +163,19 @@ TEST(HalfSquatJump, RearFeetEndOnTheWallPushingAndFrontFeetNeverLeave) {
   checkNewton(s);
   checkTorques(s);
 }
+
+TEST(SquatJump, LegReachOptionBoundsEveryKnot) {
+  // workspace.reach: |hip -> foot| <= reach at every node (a sphere per leg, on top of the box).
+  const double reach = 0.74;
+  const JumpConfig cfg = loadJumpConfig("squat-jump", "", {"workspace.reach=0.74"});
+  const JumpProblem problem(cfg);
+  const SolveResult r = problem.solve(false);
+  ASSERT_TRUE(r.info.solved()) << r.info.status;
+  const Primitive p = problem.toPrimitive(r);
+  double worst = 0.0;
+  for (Eigen::Index k = 1; k < p.knot_x.rows(); ++k) {
+    for (int i = 0; i < 4; ++i) worst = std::max(worst, p.knot_x.row(k).segment<3>(7 + 3 * i).norm());
+  }
+  EXPECT_LE(worst, reach + 1e-6);
+  EXPECT_GT(worst, reach - 0.01);  // it binds: the default plan stretches further (0.79 m)
+}
