@@ -49,9 +49,9 @@ demo: build
 	$(CENTAUR) inspect $(OUT)/primitives.h5
 	$(CENTAUR) plot $(OUT)/primitives.h5 --out $(OUT)/primitives.png
 	$(CENTAUR) simulate stand --duration 5 --out $(OUT)/stand.h5 --snapshot $(OUT)/stand.png --at 2 --json
-	$(CENTAUR) compare --out $(OUT)/compare --primitives $(OUT)/primitives.h5
 	$(CENTAUR) simulate squat-jump --primitive $(OUT)/primitives.h5 --stabilizer raibert --video $(OUT)/squat-jump-raibert.mp4
 	$(CENTAUR) simulate half-squat-jump --primitive $(OUT)/primitives.h5 --stabilizer raibert --video $(OUT)/half-squat-jump-raibert.mp4
+	$(CENTAUR) compare --out $(OUT)/compare --primitives $(OUT)/primitives.h5
 	@echo
 	@echo "Demo outputs in $(OUT)/:"
 	@echo "  primitives.h5                      both planned jumps (docs/primitive-format.md)"
@@ -59,10 +59,10 @@ demo: build
 	@echo "  primitives-half-squat-jump.png     the same for the half-squat jump (rear wheels onto a wall)"
 	@echo "  primitives.*.yaml                  the effective planner configurations"
 	@echo "  stand.h5, stand.png                CENTAURO standing in MuJoCo: log and snapshot (docs/sim.md)"
-	@echo "  compare/compare.md                 both jumps x four stabilizer modes: outcome, pitch, torque (docs/validation.md)"
-	@echo "  compare/compare-pitch.png          IMU pitch over time, one panel per jump (like the paper's Fig. 4)"
 	@echo "  squat-jump-raibert.mp4             the squat jump with the Raibert-like stabilizer (docs/jumps.md)"
 	@echo "  half-squat-jump-raibert.mp4        the half-squat jump onto the wall, same stabilizer"
+	@echo "  compare/compare.md                 both jumps x four stabilizer modes: outcome, pitch, torque (docs/validation.md)"
+	@echo "  compare/compare-pitch.png          IMU pitch over time, one panel per jump (like the paper's Fig. 4)"
 	@echo "  compare/compare.json, compare-pitch.csv, <jump>-<mode>.h5   the same table, the plotted data, the logs"
 
 clean:
