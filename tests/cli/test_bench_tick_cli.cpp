@@ -8,23 +8,12 @@
 #include <cstdio>
 #include <string>
 #include <sys/wait.h>
+#include "support/cli_run.hpp"
 
 namespace {
 
-struct CliRun {
-  int code;
-  std::string out;  // stdout only
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(CENTAUR_BIN) + " " + args + " 2>/dev/null";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
-  const int status = pclose(p);
-  return {WEXITSTATUS(status), out};
-}
+using centaur_test::CliRun;
+using centaur_test::run;
 
 std::string lastLine(const std::string& s) {
   std::string t = s;

@@ -11,25 +11,14 @@
 #include <sstream>
 
 #include "planner/primitive_io.hpp"
+#include "support/cli_run.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-  int code;
-  std::string out;  // stdout + stderr
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(CENTAUR_BIN) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
-  const int status = pclose(p);
-  return {WEXITSTATUS(status), out};
-}
+using centaur_test::CliRun;
+using centaur_test::run;
 
 fs::path tempDir() {
   const fs::path d = fs::temp_directory_path() / ("centaur_cli_" + std::to_string(::getpid()));

@@ -12,31 +12,15 @@
 #include "common/error.hpp"
 #include "planner/arm_trajectory_io.hpp"
 #include "stabilizers/ocp_posture_stabilizer.hpp"
+#include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-  int code;
-  std::string out;  // stdout + stderr
-  std::string last_line;
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(CENTAUR_BIN) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  CliRun r{0, "", ""};
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) {
-    r.out += buf.data();
-    r.last_line = buf.data();
-  }
-  const int status = pclose(p);
-  r.code = WEXITSTATUS(status);
-  return r;
-}
+using centaur_test::CliRun;
+using centaur_test::run;
 
 }  // namespace
 

@@ -1,0 +1,37 @@
+#pragma once
+// Run the `centaur` command in a test: `run("plan squat-jump --out F.h5")` -> exit code, output, last line.
+// The including test target defines CENTAUR_BIN (the executable's path; see tests/cli/CMakeLists.txt).
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+namespace centaur_test {
+
+struct CliRun {
+  int code = 0;
+  std::string out;        ///< stdout (+ stderr when merged)
+  std::string last_line;  ///< the last line of out, with its newline
+};
+
+/// Runs `CENTAUR_BIN args`; stderr goes into out (merge_stderr) or to /dev/null.
+inline CliRun run(const std::string& args, bool merge_stderr = true) {
+  const std::string cmd = std::string(CENTAUR_BIN) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+  FILE* p = popen(cmd.c_str(), "r");
+  CliRun r;
+  if (p == nullptr) {
+    r.code = -1;
+    return r;
+  }
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), p)) {
+    r.out += buf.data();
+    r.last_line = buf.data();
+  }
+  const int status = pclose(p);
+  r.code = WEXITSTATUS(status);
+  return r;
+}
+
+}  // namespace centaur_test
