@@ -1,5 +1,7 @@
 #include "sim/jump_observer.hpp"
 
+#include "sim/compare_pitch.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,10 +9,7 @@ namespace centaur::sim {
 
 namespace {
 constexpr double kRadToDeg = 180.0 / M_PI;
-double pitchOf(const Eigen::Quaterniond& q) {
-  const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
-  return std::asin(std::clamp(-R(2, 0), -1.0, 1.0));  // ZYX pitch
-}
+double pitchOf(const Eigen::Quaterniond& q) { return pitchFromQuaternion(q.w(), q.x(), q.y(), q.z()); }  // ZYX
 }  // namespace
 
 JumpObserver::JumpObserver(const MujocoRobot& robot, const JumpObserverParams& params) : p_(params) {
