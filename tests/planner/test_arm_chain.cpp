@@ -14,6 +14,7 @@
 #include "model/robot_model.hpp"
 #include "planner/arm_elements.hpp"
 #include "planner/arm_flywheel_problem.hpp"
+#include "planner/nlp_fd_check.hpp"
 
 using namespace centaur;
 using namespace centaur::planner;
@@ -237,40 +238,6 @@ TEST(ArmChain, AssembledArmFlywheelNlpMatchesCentralDifferences) {
     for (int i = 0; i < n; ++i) z[i] += 0.1 * U(rng) * ocp.scale()[i];
     Eigen::VectorXd lambda(m);
     for (int j = 0; j < m; ++j) lambda[j] = U(rng);
-    const double sigma = 0.7, h = 1e-6;
-    Eigen::VectorXd grad(n);
-    ocp.gradient(z.data(), grad.data());
-    std::vector<double> jac(ocp.jacobianNonzeros()), hess(ocp.hessianNonzeros());
-    ocp.jacobian(z.data(), jac.data());
-    ocp.hessian(z.data(), sigma, lambda.data(), hess.data());
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, n), H = Eigen::MatrixXd::Zero(n, n);
-    for (std::size_t k = 0; k < jac.size(); ++k) J(ocp.jacobianRows()[k], ocp.jacobianCols()[k]) += jac[k];
-    for (std::size_t k = 0; k < hess.size(); ++k) {
-      const int r = ocp.hessianRows()[k], c = ocp.hessianCols()[k];
-      H(r, c) += hess[k];
-      if (r != c) H(c, r) += hess[k];
-    }
-    auto lagGrad = [&](const Eigen::VectorXd& zz) {
-      Eigen::VectorXd g(n);
-      ocp.gradient(zz.data(), g.data());
-      std::vector<double> jv(ocp.jacobianNonzeros());
-      ocp.jacobian(zz.data(), jv.data());
-      Eigen::VectorXd out = sigma * g;
-      for (std::size_t k = 0; k < jv.size(); ++k) out[ocp.jacobianCols()[k]] += jv[k] * lambda[ocp.jacobianRows()[k]];
-      return out;
-    };
-    Eigen::VectorXd gp(m), gm(m);
-    for (int i = 0; i < n; ++i) {
-      Eigen::VectorXd zp = z, zm = z;
-      zp[i] += h;
-      zm[i] -= h;
-      ASSERT_LT(relErr(grad[i], (ocp.objective(zp.data()) - ocp.objective(zm.data())) / (2 * h)), 1e-6) << mode << " grad " << i;
-      ocp.constraints(zp.data(), gp.data());
-      ocp.constraints(zm.data(), gm.data());
-      const Eigen::VectorXd col = (gp - gm) / (2 * h);
-      for (int j = 0; j < m; ++j) ASSERT_LT(relErr(J(j, i), col[j]), 1e-6) << mode << " J(" << j << "," << i << ")";
-      const Eigen::VectorXd hcol = (lagGrad(zp) - lagGrad(zm)) / (2 * h);
-      for (int r = 0; r < n; ++r) ASSERT_LT(relErr(H(r, i), hcol[r]), 1e-6) << mode << " H(" << r << "," << i << ")";
-    }
+    centaur::test::expectNlpMatchesCentralDifferences(ocp, z, lambda, 0.7, mode);
   }
 }
