@@ -123,6 +123,8 @@ class WholeBodyController final : public Controller {
   /// Wall time of the last tick's HQP update+solve [s] (steady clock), for benchmarks.
   double lastQpSeconds() const { return qp_seconds_; }
   const Eigen::VectorXd& solution() const { return x_; }  ///< x = v of the last solve (nv)
+  /// The default posture reference since start(): the home keyframe, wheels at their initial angle [rad] (n).
+  const Eigen::VectorXd& homePosture() const { return q_home_; }
   const RobotModel& ikModel() const { return *model_ik_; }
   const RobotModel& measuredModel() const { return *model_meas_; }
   HqpSolver& hqp() { return hqp_; }

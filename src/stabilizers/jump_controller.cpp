@@ -51,18 +51,14 @@ JumpController::JumpController(const std::string& mjcf_path, const planner::Prim
 void JumpController::start(const RobotState& state, JointCommand& command) {
   t0_ = state.t;
   t_rel_ = -params_.settle_time;
-  const RobotModel& m = wbc_->ikModel();
-  Eigen::VectorXd q_home = m.homeJoints();
-  for (int i = 0; i < m.numJoints(); ++i) {
-    if (m.jointNames()[static_cast<std::size_t>(i)].find("wheel") != std::string::npos) q_home[i] = state.q[i];
-  }
-  stabilizer_->start(m.jointNames(), q_home);
   replay_.sample(t_rel_, sample_);
   w_search_.setZero();
   w_search_end_.setZero();
   end_latched_ = false;
-  wbc_->start(state, command);  // holds the feet where they are; the first tick below sets the references
-  tick(state, command);
+  // The whole-body controller's start() holds the feet where they are (= the first sample's r_C) and writes
+  // the first command; the replay and the stabilizer take over from the next tick.
+  wbc_->start(state, command);
+  stabilizer_->start(wbc_->ikModel().jointNames(), wbc_->homePosture());
 }
 
 void JumpController::tick(const RobotState& state, JointCommand& command) noexcept {
