@@ -50,9 +50,15 @@ void runLoop(benchmark::State& st, sim::MujocoRobot& robot, Controller& ctrl) {
   st.counters["rtf"] = benchmark::Counter(robot.controlPeriodSeconds(), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The robot as `centaur simulate` builds it when nothing is rendered: without the visual-only geoms.
+sim::SimSettings physicsOnly(sim::SimSettings s) {
+  s.visual_geoms = false;
+  return s;
+}
+
 void BM_StandClosedLoop(benchmark::State& st) {
   const sim::SimConfig cfg = sim::loadSimConfig("", "", {});
-  sim::MujocoRobot robot(cfg.robot);
+  sim::MujocoRobot robot(physicsOnly(cfg.robot));
   StandingParams params;
   params.use_base_estimator = st.range(0) != 0;
   StandingController ctrl(cfg.robot.model_path, params);
@@ -62,7 +68,7 @@ BENCHMARK(BM_StandClosedLoop)->ArgName("base_estimator")->Arg(1)->Arg(0)->Unit(b
 
 void BM_StandPhysicsAndImpedanceOnly(benchmark::State& st) {
   const sim::SimConfig cfg = sim::loadSimConfig("", "", {});
-  sim::MujocoRobot robot(cfg.robot);
+  sim::MujocoRobot robot(physicsOnly(cfg.robot));
   Eigen::VectorXd q(robot.numJoints());
   robot.jointPositions(q);
   ConstantController ctrl(q);
@@ -72,7 +78,7 @@ BENCHMARK(BM_StandPhysicsAndImpedanceOnly)->Unit(benchmark::kMicrosecond);
 
 void BM_StandingControllerTick(benchmark::State& st) {
   const sim::SimConfig cfg = sim::loadSimConfig("", "", {});
-  sim::MujocoRobot robot(cfg.robot);
+  sim::MujocoRobot robot(physicsOnly(cfg.robot));
   StandingController ctrl(cfg.robot.model_path, StandingParams{});
   RobotState state;
   state.resize(robot.numJoints());

@@ -107,7 +107,9 @@ nlohmann::json benchTick(const BenchArgs& a) {
     stack = model.substr(0, model.size() - std::string("models/centauro/centauro.xml").size()) +
             "config/stack_stand.yaml";
   }
-  sim::MujocoRobot robot(cfg.robot);
+  sim::SimSettings settings = cfg.robot;
+  settings.visual_geoms = false;  // as `simulate` without --video/--snapshot
+  sim::MujocoRobot robot(settings);
   WholeBodyParams p;
   p.stack_file = stack;
   p.dt = robot.controlPeriodSeconds();

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "common/error.hpp"
+#include "model/mjcf_load.hpp"
 
 namespace centaur::model {
 
@@ -39,9 +40,7 @@ ChainSpec centauroLeftArmSpec() {
 std::string centauroMjcfPath() { return std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml"; }
 
 SerialChain chainFromMjcf(const std::string& path, const ChainSpec& spec) {
-  char err[1000] = "";
-  std::unique_ptr<mjModel, MjDeleter> mp(mj_loadXML(path.c_str(), nullptr, err, sizeof(err)));
-  if (!mp) throw InputError(path + ": cannot load the MJCF: " + err);
+  std::unique_ptr<mjModel, MjDeleter> mp(loadMjcf(path, /*discard_visual=*/true));
   const mjModel* m = mp.get();
   std::unique_ptr<mjData, MjDeleter> dp(mj_makeData(m));
   mjData* d = dp.get();

@@ -19,6 +19,7 @@
 #include <limits>
 
 #include "common/error.hpp"
+#include "model/mjcf_load.hpp"
 
 namespace centaur {
 
@@ -105,9 +106,7 @@ struct RobotModel::Impl {
 RobotModel::RobotModel(const std::string& mjcf_path) : impl_(std::make_unique<Impl>()) {
   Impl& I = *impl_;
   I.path = mjcf_path;
-  char err[1024] = "";
-  I.m = mj_loadXML(mjcf_path.c_str(), nullptr, err, sizeof(err));
-  if (!I.m) throw InputError(mjcf_path + ": cannot load the MJCF model: " + err);
+  I.m = loadMjcf(mjcf_path, /*discard_visual=*/true);  // the controller never draws: no visual geoms to pose
   const mjModel* m = I.m;
 
   int free_joint = -1;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "common/error.hpp"
+#include "model/mjcf_load.hpp"
 
 namespace centaur::sim {
 
@@ -14,9 +15,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng_(settings.seed) {
   const std::string& path = settings_.model_path;
-  char error[1000] = "";
-  m_ = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
-  if (!m_) throw InputError(path + ": cannot load the MJCF model: " + error);
+  m_ = loadMjcf(path, !settings_.visual_geoms);
   if (m_->opt.integrator == mjINT_RK4) {
     mj_deleteModel(m_);
     throw InputError(path + ": the RK4 integrator is not supported (the impedance law needs mj_step1/mj_step2)");

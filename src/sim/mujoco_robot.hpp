@@ -53,6 +53,9 @@ struct SimSettings {
   std::string keyframe = "home";   ///< initial state (keyframe name; "" or missing -> the model's qpos0)
   /// Bodies whose contact forces are reported (ground truth), e.g. the four wheels.
   std::vector<std::string> contact_bodies = {"wheel_1", "wheel_2", "wheel_3", "wheel_4"};
+  /// Keep the visual-only geoms (contype = conaffinity = 0). Needed to render; without them every physics step
+  /// skips posing ~80 shapes (same dynamics and contacts; see model/mjcf_load.hpp).
+  bool visual_geoms = true;
 };
 
 class MujocoRobot final : public RobotInterface {

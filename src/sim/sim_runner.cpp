@@ -175,7 +175,9 @@ RunSummary runScenario(const Scenario& scenario, const std::string& config_file,
     if (!options.count(kv.first)) throw InputError("simulate " + scenario.name + ": unknown option --" + kv.first);
   }
   const SimConfig config = loadSimConfig(scenario.defaults_yaml, config_file, overrides);
-  MujocoRobot robot(config.robot);
+  SimSettings settings = config.robot;
+  settings.visual_geoms = !outputs.video_path.empty() || !outputs.snapshot_path.empty();  // only drawing needs them
+  MujocoRobot robot(settings);
   YamlReader controller_config = controllerSection(config);
   ScenarioContext ctx{config, controller_config, options, robot};
   std::unique_ptr<Controller> controller = scenario.make_controller(ctx);

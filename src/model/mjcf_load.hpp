@@ -1,0 +1,19 @@
+#pragma once
+// Loading an MJCF file with MuJoCo, optionally without its visual-only geoms. Shared by the controller's models
+// (model module) and the simulator (sim module); the only header of the model module that names a MuJoCo type,
+// and only as an opaque pointer.
+#include <string>
+
+struct mjModel_;
+
+namespace centaur {
+
+/// Loads `path` (InputError naming the file if MuJoCo cannot). With `discard_visual`, geoms that collide with
+/// nothing (contype = conaffinity = 0, i.e. the visual shapes) are dropped by MuJoCo's parser (compiler option
+/// discardvisual). They cost time in every kinematics pass (pose of each geom) but play no part in the dynamics
+/// or contacts. The result is checked: if any body's mass, inertia or CoM differs from the full load (a model
+/// that derives inertia from those geoms), the full model is returned instead. The caller owns the model
+/// (mj_deleteModel).
+mjModel_* loadMjcf(const std::string& path, bool discard_visual);
+
+}  // namespace centaur
