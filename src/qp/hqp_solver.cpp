@@ -92,6 +92,8 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   ylo_.setZero(std::max(m_rows, 1));
   yup_.setZero(std::max(m_rows, 1));
   tmp_.setZero(std::max(m_in_, n));
+  used_.assign(n, 0);
+  n_used_ = n;
   failed_level_ = -1;
 }
 
@@ -157,10 +159,7 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
     QpStatus status = QpStatus::kOptimal;
     if (k == 0) {
       assembleLevel(0);
-      QpSolver& qp = solvers_[0];
-      status = has_box_ ? qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, x_lo_, x_up_)
-                        : qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, none, none);
-      if (status == QpStatus::kOptimal) level_x_[0] = qp.x();
+      status = solveFirst();
     } else {
       status = solveReduced(k);
     }
@@ -177,6 +176,52 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
   return QpStatus::kOptimal;
 }
 
+QpStatus HqpSolver::solveFirst() {
+  const int m0 = level_offset_[1];
+  n_used_ = 0;
+  for (int j = 0; j < n_; ++j) {
+    const bool used = (m0 > 0 && E_.col(j).head(m0).cwiseAbs().maxCoeff() > 0.0) ||
+                      (m_in_ > 0 && C_.col(j).cwiseAbs().maxCoeff() > 0.0);
+    if (used) used_[n_used_++] = j;
+  }
+  const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);
+  QpSolver& qp = solvers_[0];
+  if (n_used_ == n_) {
+    const QpStatus status = has_box_ ? qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, x_lo_, x_up_)
+                                     : qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, none, none);
+    if (status == QpStatus::kOptimal) level_x_[0] = qp.x();
+    return status;
+  }
+  // The QP on the used columns (workspaces of the reduced levels, free at this point). An unused column has
+  // H_jj = eps, g_j = 0 and no constraint row: x_j = argmin eps x_j^2 over its box = the box point nearest 0.
+  const int nu = n_used_;
+  auto H = Hy_.topLeftCorner(nu, nu);
+  auto g = gy_.head(nu);
+  for (int b = 0; b < nu; ++b) {
+    g[b] = g_[used_[b]];
+    for (int a = 0; a < nu; ++a) H(a, b) = H_(used_[a], used_[b]);
+  }
+  auto C = Cy_.topLeftCorner(m_in_, nu);
+  for (int b = 0; b < nu; ++b) C.col(b) = C_.col(used_[b]);
+  QpStatus status;
+  if (has_box_) {
+    auto lo = ylo_.head(nu), up = yup_.head(nu);
+    for (int b = 0; b < nu; ++b) {
+      lo[b] = x_lo_[used_[b]];
+      up[b] = x_up_[used_[b]];
+    }
+    status = qp.solve(H, g, E_.topLeftCorner(0, nu), bs_.head(0), C, c_lo_, c_up_, lo, up);
+  } else {
+    status = qp.solve(H, g, E_.topLeftCorner(0, nu), bs_.head(0), C, c_lo_, c_up_, none, none);
+  }
+  if (status != QpStatus::kOptimal) return status;
+  Eigen::VectorXd& x = level_x_[0];
+  x.setZero();
+  if (has_box_) x = x.cwiseMax(x_lo_).cwiseMin(x_up_);
+  for (int b = 0; b < nu; ++b) x[used_[b]] = qp.x()[b];
+  return status;
+}
+
 void HqpSolver::updateNullSpace(int k) {
   // Z_k = Z_{k-1} N, N a basis of null(A_{k-1} Z_{k-1}) (A_{k-1}: the rows of level k-1; Z_0 = I).
   const int first = level_offset_[k - 1];
@@ -184,7 +229,26 @@ void HqpSolver::updateNullSpace(int k) {
   const int prev = cur_;
   cur_ = 1 - cur_;
   if (nz_ == 0) return;
-  if (k == 1) {
+  if (k == 1 && n_used_ < n_) {
+    // Rows of level 0 live on the used columns: Z = [basis of their null space there; identity on the others].
+    const int nu = n_used_;
+    auto B = B_.topLeftCorner(m, nu);
+    for (int b = 0; b < nu; ++b) B.col(b) = E_.col(used_[b]).segment(first, m);
+    null_space_.compute(B, rank_tol_);
+    const int nn = nu - null_space_.rank();
+    nz_ = n_ - null_space_.rank();
+    auto Z = Z_[cur_].leftCols(nz_);
+    Z.setZero();
+    const auto N = null_space_.basis();
+    for (int b = 0; b < nu; ++b) Z.row(used_[b]).head(nn) = N.row(b);
+    for (int j = 0, col = nn, b = 0; j < n_; ++j) {
+      if (b < nu && used_[b] == j) {
+        ++b;
+      } else {
+        Z(j, col++) = 1.0;
+      }
+    }
+  } else if (k == 1) {
     null_space_.compute(E_.middleRows(first, m), rank_tol_);
     nz_ = n_ - null_space_.rank();
     Z_[cur_].leftCols(nz_) = null_space_.basis();

@@ -16,6 +16,11 @@
 // (the constraint rows times Z and the box bounds as rows Z), which is much smaller than the full problem
 // and makes redundant rows of the levels above harmless (they do not increase the rank).
 //
+// Level 0 leaves out the columns that none of its rows and no constraint row touches (e.g. the arms and the
+// wheels' spin when the first level holds the feet): their only cost is eps x_j^2, so x_j = 0 (clipped to the
+// box), and the first QP and the null space of its rows are computed on the other columns only. Exact, and
+// about 3x cheaper for a 45-variable robot whose first level involves ~20 of them.
+//
 // Lifecycle: configure(stack, n) checks the stack and allocates everything; then every tick
 //   update()  -> each distinct task / constraint recomputes its A, b / bounds (once, even if shared)
 //   solve(x)  -> no allocation, no throw, returns a status the caller must check.
@@ -64,6 +69,7 @@ class HqpSolver {
 
  private:
   void assembleLevel(int k);      // level 0: H_, g_ and its rows in E_
+  QpStatus solveFirst();          // level 0 on the columns its rows or the constraints touch
   QpStatus solveReduced(int k);   // level k >= 1 in the null space of the levels above
   void updateNullSpace(int k);    // Z_k from Z_{k-1} and the rows of level k-1
   void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
@@ -86,6 +92,8 @@ class HqpSolver {
   int cur_ = 0, nz_ = 0;
   Eigen::VectorXd gy_, ylo_, yup_, tmp_;
   std::vector<int> level_rank_;
+  std::vector<int> used_;  // level 0: the columns touched by its rows or by a constraint row (n_used_ of them)
+  int n_used_ = 0;
   double rank_tol_ = 1e-10;  // relative pivot threshold of the rank-revealing QR
   int failed_level_ = -1;
 };

@@ -326,7 +326,7 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
   const int n_eq_active = iq_;
 
   // ---- warm start: re-impose the previous active inequalities, then restore dual feasibility ----
-  if (settings_.warm_start && n_prev_ > 0 && prev_m_eq_ == m_eq && prev_m_in_ == m_in && prev_box_ == box) {
+  if (settings_.warm_start && n_prev_ > 0 && prev_n_ == n && prev_m_eq_ == m_eq && prev_m_in_ == m_in && prev_box_ == box) {
     for (int k = 0; k < n_prev_; ++k) {
       const int id = prev_active_[k];
       if (id < m_eq || id >= n_ids) continue;
@@ -441,6 +441,7 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
   n_prev_ = 0;
   for (int k = n_eq_active; k < iq_; ++k)
     if (!is_eq_[k]) prev_active_[n_prev_++] = active_[k];
+  prev_n_ = n;
   prev_m_eq_ = m_eq;
   prev_m_in_ = m_in;
   prev_box_ = box;

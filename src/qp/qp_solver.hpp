@@ -129,7 +129,7 @@ class QpSolver {
   std::vector<char> in_active_;   // per id
   std::vector<int> prev_active_;  // previous optimal inequality ids (warm start)
   int n_prev_ = 0;
-  int prev_m_eq_ = -1, prev_m_in_ = -1;
+  int prev_n_ = -1, prev_m_eq_ = -1, prev_m_in_ = -1;
   bool prev_box_ = false;
   int iq_ = 0;
   int iterations_ = 0;

@@ -284,3 +284,44 @@ TEST(Hqp, WarmStartNeverChangesTheAnswer) {
     arm.q += dt * xw;
   }
 }
+
+TEST(Hqp, FirstLevelOnItsOwnColumnsEqualsTheFullProblem) {
+  // Level 0 touches only some columns (as the feet of a whole-body stack touch only the legs): the solver leaves
+  // the others out of the first QP and its null space. Reference: the same stack plus an inequality row with
+  // infinite bounds that touches every column, which keeps every column in the first QP (the full-size path)
+  // without changing the problem. Both must give the same solution of every level, including columns whose box
+  // excludes 0 (the first level puts them at the bound nearest 0).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    const int n = 6 + trial % 7;
+    auto first = randomTask(rng, "first", 1 + trial % 4, n);
+    std::vector<int> unused;
+    for (int j = 0; j < n; ++j)
+      if (U(rng) < 0.5) unused.push_back(j);
+    for (int j : unused) first->A().col(j).setZero();
+    auto second = randomTask(rng, "second", 2 + trial % 3, n);
+    auto third = randomTask(rng, "third", n, n);
+    auto box = std::make_shared<LinearConstraint>("box", n, 0);
+    for (int j = 0; j < n; ++j) {
+      box->lowerBounds()[j] = -0.3 - U(rng);
+      box->upperBounds()[j] = 0.3 + U(rng);
+    }
+    if (!unused.empty()) box->lowerBounds()[unused[0]] = 0.1;  // excludes 0
+    auto everywhere = std::make_shared<LinearConstraint>("everywhere", n, 1);
+    everywhere->C().setOnes();
+    everywhere->cLower()[0] = -kInf;
+    everywhere->cUpper()[0] = kInf;
+    const Stack s = first / second / third << box;
+    HqpSolver reduced(s, n), full(s << everywhere, n);
+    VectorXd xr(n), xf(n);
+    ASSERT_EQ(reduced.solve(xr), QpStatus::kOptimal) << trial;
+    ASSERT_EQ(full.solve(xf), QpStatus::kOptimal) << trial;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LT((reduced.levelSolution(k) - full.levelSolution(k)).cwiseAbs().maxCoeff(), 1e-7)
+          << "trial " << trial << " level " << k;
+      EXPECT_EQ(reduced.levelRank(k), full.levelRank(k));
+    }
+    if (!unused.empty()) EXPECT_DOUBLE_EQ(reduced.levelSolution(0)[unused[0]], 0.1);
+  }
+}
