@@ -67,10 +67,10 @@ void BaseEstimator::update(const RobotState& state, const bool stance[kWheels]) 
   v_tmp_.head<3>() = v_prev;
   v_tmp_.segment<3>(3) = state.imu_omega;
   v_tmp_.tail(n) = state.qd;
-  model.update(q_tmp_, v_tmp_, RobotModel::Detail::kMomentum);
-
   int n_stance = 0;
   for (int k = 0; k < kWheels; ++k) n_stance += stance[k] ? 1 : 0;
+  // In stance: wheel poses, velocities and Jacobians; in flight also the CoM velocity (from the momentum).
+  model.update(q_tmp_, v_tmp_, n_stance > 0 ? RobotModel::Detail::kKinematics : RobotModel::Detail::kMomentum);
 
   Eigen::Vector3d p_new = p_prev, v_new = v_prev;
   if (n_stance > 0) {

@@ -60,6 +60,12 @@ WholeBodyController::WholeBodyController(const std::string& mjcf_path, const Who
   posture_ = findTask<PosturalTask>(stack_, params_.posture_task);
   pelvis_ = findTask<PelvisAngularVelocityTask>(stack_, params_.pelvis_task);
   momentum_ = findTask<AngularMomentumTask>(stack_, params_.momentum_task);
+  // The IK model computes the centroidal momentum matrix only if a task of the stack needs it.
+  ik_detail_ = RobotModel::Detail::kKinematics;
+  for (const auto& named : stack_.tasks) {
+    if (std::dynamic_pointer_cast<AngularMomentumTask>(named.second) || std::dynamic_pointer_cast<ComTask>(named.second))
+      ik_detail_ = RobotModel::Detail::kMomentum;
+  }
 
   kp_.setZero(n_);
   kd_.setZero(n_);
@@ -213,7 +219,7 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
     enterSafe(WholeBodyStatus::kSafeInvalidInput, command);
     return;
   }
-  model_meas_->update(estimator_.q(), estimator_.v());
+  model_meas_->update(estimator_.q(), estimator_.v(), RobotModel::Detail::kDynamics);  // M, bias, Jacobians
   if (params_.use_contact_detector && detector_.update(*model_meas_, state.tau, params_.dt)) {
     contacts_.stance = detector_.inContact();
   } else if (!params_.use_contact_detector) {
@@ -229,7 +235,7 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
   q_ik_.tail(n_) = q_ref_;
   v_ik_.head<6>() = estimator_.v().head<6>();
   v_ik_.tail(n_) = qd_ref_;
-  model_ik_->update(q_ik_, v_ik_, RobotModel::Detail::kMomentum);  // velocity IK: no dynamics needed
+  model_ik_->update(q_ik_, v_ik_, ik_detail_);  // velocity IK: no dynamics needed
   if (resume_pending_) {
     holdCurrentReferences();
     resume_pending_ = false;

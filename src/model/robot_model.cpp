@@ -219,15 +219,18 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
   for (int i = 0; i < I.nq; ++i) d->qpos[i] = q[i];
   for (int i = 0; i < I.nv; ++i) d->qvel[i] = v[i];
 
+  const bool full = detail == Detail::kFull;
+  const bool momentum = full || detail == Detail::kMomentum;
+  const bool dynamics = full || detail == Detail::kDynamics;
   mj_kinematics(m, d);
   mj_comPos(m, d);
-  mj_crb(m, d);
+  if (momentum || dynamics) mj_crb(m, d);  // composite inertias: the CMM and the mass matrix qM
   mj_comVel(m, d);  // frame velocities
-  const bool full = detail == Detail::kFull;
-  if (full) {
+  if (dynamics) {
     mj_fullM(m, I.M.data(), d->qM);  // row-major nv x nv, same layout as RowMatrixXd
     mj_rne(m, d, 0, I.b.data());
   }
+  if (!momentum) return;
 
   // Centroidal momentum matrix: column j = crb[body(j)] * cdof[j], about the tree's CoM.
   double res[6];

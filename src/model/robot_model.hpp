@@ -57,6 +57,12 @@ class RobotModel {
                 ///< gravity vector g; NOT the mass matrix, the bias forces nor the momentum bias (their
                 ///< queries return the values of the last kFull update). Enough for velocity-level IK and
                 ///< the base estimator, and about half the cost.
+    kDynamics,  ///< kinematics, frame poses, velocities and Jacobians, CoM position, mass matrix and bias forces;
+                ///< NOT the centroidal momentum matrix, Jcom, h, CoM velocity, gravity vector g nor the Jdot v
+                ///< and momentum-bias data (last values of an update that computed them). What force
+                ///< distribution and contact detection use.
+    kKinematics,  ///< kinematics, frame poses, velocities and Jacobians, CoM position only. What a stack
+                  ///< without CoM or momentum task and the base estimator in stance use.
   };
   /// Set q (nq) and v (nv) and compute kinematics, CoM, mass matrix and bias forces. No allocation.
   void update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v,
