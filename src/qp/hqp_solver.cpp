@@ -58,6 +58,7 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   const int total_rows = level_offset_.back();
   H_.setZero(n, n);
   g_.setZero(n);
+  b0_.setZero(std::max(level_offset_[1], 1));
   E_.setZero(std::max(total_rows, 1), n);
   As_.setZero(max_term_rows, n);
   WAs_.setZero(max_term_rows, n);
@@ -102,22 +103,46 @@ void HqpSolver::update() {
   for (Constraint* c : constraints_) c->update();
 }
 
-void HqpSolver::assembleLevel(int k) {
-  H_.setZero();
-  g_.setZero();
-  int row = level_offset_[k];
-  for (const Term& t : stack_.levels[k].terms) {
+void HqpSolver::assembleFirst() {
+  // The rows of level 0 (into E_, their targets into b0_), then the columns they or a constraint row touch.
+  const int m0 = level_offset_[1];
+  int row = 0;
+  for (const Term& t : stack_.levels[0].terms) {
     const int m = t.size();
     rowsOf(t);
-    auto As = As_.topRows(m);
-    auto WAs = WAs_.topRows(m);
-    weigh(t, As, WAs);
-    productNoAlloc(H_, As.transpose(), WAs, true);
-    g_.noalias() -= WAs.transpose() * bs_.head(m);
-    E_.middleRows(row, m) = As;
+    E_.middleRows(row, m) = As_.topRows(m);
+    b0_.segment(row, m) = bs_.head(m);
     row += m;
   }
-  H_.diagonal().array() += stack_.regularisation;
+  n_used_ = 0;
+  for (int j = 0; j < n_; ++j) {
+    const bool used = (m0 > 0 && E_.col(j).head(m0).cwiseAbs().maxCoeff() > 0.0) ||
+                      (m_in_ > 0 && C_.col(j).cwiseAbs().maxCoeff() > 0.0);
+    if (used) used_[n_used_++] = j;
+  }
+  // H = sum A' W A + eps I and g = -sum A' W b on the used columns (H_, g_ if all are used, else Hy_, gy_).
+  const int nu = n_used_;
+  const bool all = nu == n_;
+  auto H = all ? H_.topLeftCorner(n_, n_) : Hy_.topLeftCorner(nu, nu);
+  auto g = all ? g_.head(n_) : gy_.head(nu);
+  H.setZero();
+  g.setZero();
+  row = 0;
+  for (const Term& t : stack_.levels[0].terms) {
+    const int m = t.size();
+    auto A = HZ_.topLeftCorner(m, nu);
+    if (all) {
+      A = E_.middleRows(row, m);
+    } else {
+      for (int b = 0; b < nu; ++b) A.col(b) = E_.col(used_[b]).segment(row, m);
+    }
+    auto WA = WAs_.topLeftCorner(m, nu);
+    weigh(t, A, WA);
+    productNoAlloc(H, A.transpose(), WA, true);
+    g.noalias() -= WA.transpose() * b0_.segment(row, m);
+    row += m;
+  }
+  H.diagonal().array() += stack_.regularisation;
 }
 
 QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
@@ -158,7 +183,7 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
   for (int k = 0; k < levels; ++k) {
     QpStatus status = QpStatus::kOptimal;
     if (k == 0) {
-      assembleLevel(0);
+      assembleFirst();
       status = solveFirst();
     } else {
       status = solveReduced(k);
@@ -177,13 +202,6 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
 }
 
 QpStatus HqpSolver::solveFirst() {
-  const int m0 = level_offset_[1];
-  n_used_ = 0;
-  for (int j = 0; j < n_; ++j) {
-    const bool used = (m0 > 0 && E_.col(j).head(m0).cwiseAbs().maxCoeff() > 0.0) ||
-                      (m_in_ > 0 && C_.col(j).cwiseAbs().maxCoeff() > 0.0);
-    if (used) used_[n_used_++] = j;
-  }
   const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);
   QpSolver& qp = solvers_[0];
   if (n_used_ == n_) {
@@ -192,15 +210,12 @@ QpStatus HqpSolver::solveFirst() {
     if (status == QpStatus::kOptimal) level_x_[0] = qp.x();
     return status;
   }
-  // The QP on the used columns (workspaces of the reduced levels, free at this point). An unused column has
-  // H_jj = eps, g_j = 0 and no constraint row: x_j = argmin eps x_j^2 over its box = the box point nearest 0.
+  // The QP on the used columns (H, g in the workspaces of the reduced levels, free at this point). An unused
+  // column has H_jj = eps, g_j = 0 and no constraint row: x_j = argmin eps x_j^2 over its box = the box point
+  // nearest 0.
   const int nu = n_used_;
-  auto H = Hy_.topLeftCorner(nu, nu);
-  auto g = gy_.head(nu);
-  for (int b = 0; b < nu; ++b) {
-    g[b] = g_[used_[b]];
-    for (int a = 0; a < nu; ++a) H(a, b) = H_(used_[a], used_[b]);
-  }
+  const auto H = Hy_.topLeftCorner(nu, nu);
+  const auto g = gy_.head(nu);
   auto C = Cy_.topLeftCorner(m_in_, nu);
   for (int b = 0; b < nu; ++b) C.col(b) = C_.col(used_[b]);
   QpStatus status;

@@ -68,8 +68,8 @@ class HqpSolver {
   double levelCost(int k, const Eigen::Ref<const Eigen::VectorXd>& x);
 
  private:
-  void assembleLevel(int k);      // level 0: H_, g_ and its rows in E_
-  QpStatus solveFirst();          // level 0 on the columns its rows or the constraints touch
+  void assembleFirst();           // level 0: its rows in E_, the used columns, H and g on them
+  QpStatus solveFirst();          // level 0 on the columns its rows or the constraints touch (after assembleFirst)
   QpStatus solveReduced(int k);   // level k >= 1 in the null space of the levels above
   void updateNullSpace(int k);    // Z_k from Z_{k-1} and the rows of level k-1
   void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
@@ -85,7 +85,7 @@ class HqpSolver {
   std::vector<QpSolver> solvers_;
   std::vector<Eigen::VectorXd> level_x_;
   Eigen::MatrixXd H_, E_, As_, WAs_, Wsel_, C_;
-  Eigen::VectorXd g_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
+  Eigen::VectorXd g_, b0_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
   // null-space reduction (levels >= 1)
   NullSpace null_space_;
   Eigen::MatrixXd Z_[2], B_, HZ_, Hy_, Cy_;

@@ -322,6 +322,8 @@ TEST(Hqp, FirstLevelOnItsOwnColumnsEqualsTheFullProblem) {
           << "trial " << trial << " level " << k;
       EXPECT_EQ(reduced.levelRank(k), full.levelRank(k));
     }
-    if (!unused.empty()) EXPECT_DOUBLE_EQ(reduced.levelSolution(0)[unused[0]], 0.1);
+    if (!unused.empty()) {
+      EXPECT_DOUBLE_EQ(reduced.levelSolution(0)[unused[0]], 0.1);
+    }
   }
 }
