@@ -50,9 +50,11 @@ void runLoop(benchmark::State& st, sim::MujocoRobot& robot, Controller& ctrl) {
   st.counters["rtf"] = benchmark::Counter(robot.controlPeriodSeconds(), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-// The robot as `centaur simulate` builds it when nothing is rendered: without the visual-only geoms.
+// The robot as `centaur simulate stand` builds it when nothing is rendered: without the visual-only geoms, with
+// the stand scenario's contact solver.
 sim::SimSettings physicsOnly(sim::SimSettings s) {
   s.visual_geoms = false;
+  s.solver = "cg";
   return s;
 }
 

@@ -303,9 +303,7 @@ def generate():
     o.append('     it by setting model->body_pos[3*id+0] (id = mj_name2id(m, mjOBJ_BODY, "wall")) before stepping. -->')
     o.append('<mujoco model="centauro">')
     o.append('  <compiler angle="radian" inertiafromgeom="false" autolimits="true"/>')
-    # CG, not Newton: both solve the contact problem to the same 1e-10 tolerance (identical jump outcomes and pitch
-    # to 3 decimals), CG ~20 % faster per step on this 45-dof model (docs/benchmarks.md).
-    o.append('  <option timestep="0.0005" integrator="Euler" solver="CG" cone="elliptic" iterations="50"'
+    o.append('  <option timestep="0.0005" integrator="Euler" solver="Newton" cone="elliptic" iterations="50"'
              ' tolerance="1e-10" gravity="0 0 -9.81"/>')
     o.append('  <size njmax="500" nconmax="100" nuser_jnt="1"/>')
     o.append('  <visual>')

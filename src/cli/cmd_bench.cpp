@@ -108,7 +108,8 @@ nlohmann::json benchTick(const BenchArgs& a) {
             "config/stack_stand.yaml";
   }
   sim::SimSettings settings = cfg.robot;
-  settings.visual_geoms = false;  // as `simulate` without --video/--snapshot
+  settings.visual_geoms = false;  // as `simulate stand` without --video/--snapshot
+  settings.solver = "cg";         // and its contact solver
   sim::MujocoRobot robot(settings);
   WholeBodyParams p;
   p.stack_file = stack;

@@ -25,6 +25,16 @@ MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng
     throw InputError(path + ": invalid simulation timing (timestep > 0, control_decimation >= 1, latency >= 0)");
   }
   m_->opt.timestep = settings_.timestep;
+  if (settings_.solver == "newton") {
+    m_->opt.solver = mjSOL_NEWTON;
+  } else if (settings_.solver == "cg") {
+    m_->opt.solver = mjSOL_CG;
+  } else if (settings_.solver == "pgs") {
+    m_->opt.solver = mjSOL_PGS;
+  } else if (settings_.solver != "model") {
+    mj_deleteModel(m_);
+    throw InputError(path + ": unknown contact solver '" + settings_.solver + "' (newton, cg, pgs or model)");
+  }
   d_ = mj_makeData(m_);
 
   // Actuated joints, in actuator order.

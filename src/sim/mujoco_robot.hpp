@@ -45,6 +45,7 @@ struct SimSettings {
   std::string model_path;          ///< MJCF file
   double timestep = 0.0005;        ///< [s] physics step (overrides the MJCF's)
   int control_decimation = 2;      ///< physics steps per controller call (2 -> 1 kHz at 2 kHz physics)
+  std::string solver = "model";    ///< contact solver: newton, cg, pgs, or model (keep the MJCF's)
   double wall_x = -0.578;          ///< [m] x of the wall's front face (normal +x; body/geom `wall`), if any
   double friction = 1.0;           ///< [-] sliding friction of the ground and the contact bodies' geoms
   SensorNoise noise;               ///< measurement noise (off)

@@ -8,6 +8,8 @@ model: ""                 # MJCF file; "" = <source>/models/centauro/centauro.xm
 physics:
   timestep: 0.0005        # [s] physics step (2 kHz), [1e-5, 0.01]
   control_decimation: 2   # physics steps per controller call (2 -> 1 kHz), [1, 100]
+  solver: newton          # MuJoCo contact solver: newton | cg | pgs | model (the MJCF's own option); all
+                          # reach the MJCF's tolerance, so they agree to ~1e-6; speed differs (docs/benchmarks.md)
 world:
   wall_x: -0.578          # [m] x of the wall's front face (normal +x, behind the robot), [-100, 100]
   friction: 1.0           # [-] wheel-ground sliding friction (set on ground and wheels), [0, 10]
@@ -51,6 +53,7 @@ SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label) 
     auto p = r.child("physics");
     p.get("timestep", c.robot.timestep, 1e-5, 0.01);
     p.get("control_decimation", c.robot.control_decimation, 1, 100);
+    p.get("solver", c.robot.solver, {"newton", "cg", "pgs", "model"});
     p.finish();
   }
   {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "common/error.hpp"
 #include "sim/mujoco_robot.hpp"
 
 using namespace centaur;
@@ -242,4 +243,40 @@ TEST(MujocoRobot, NoiseIsSeededAndHasTheRequestedSpread) {
     sum2 += sa.imu_omega.squaredNorm() / 3.0;
   }
   EXPECT_NEAR(std::sqrt(sum2 / N), 0.02, 0.002);
+}
+
+TEST(MujocoRobot, EveryContactSolverReachesTheSameContactSolution) {
+  // The test robot settles on its four wheels with each solver; they all solve the same convex contact problem
+  // to the model's tolerance, so base pose, contact forces and joint torques agree closely after 0.5 s.
+  std::vector<Eigen::Vector3d> base;
+  std::vector<Eigen::Matrix3Xd> forces;
+  for (const char* solver : {"newton", "cg", "pgs", "model"}) {
+    SimSettings settings = testSettings();
+    settings.solver = solver;
+    MujocoRobot robot(settings);
+    EXPECT_EQ(robot.model()->opt.solver, std::string(solver) == "cg"    ? mjSOL_CG
+                                         : std::string(solver) == "pgs" ? mjSOL_PGS
+                                                                        : mjSOL_NEWTON)
+        << solver;  // the test model's own option is Newton
+    RecordingController ctrl(50.0, 2.0);
+    RobotState s;
+    s.resize(2);
+    JointCommand c;
+    robot.read(s);
+    ctrl.start(s, c);
+    for (int k = 0; k < 500; ++k) robot.controlPeriod(ctrl, s, c);
+    base.push_back(robot.basePosition());
+    forces.emplace_back(3, 4);
+    robot.contactForces(forces.back());
+  }
+  for (std::size_t i = 1; i < base.size(); ++i) {
+    EXPECT_LT((base[i] - base[0]).norm(), 1e-6) << i;
+    EXPECT_LT((forces[i] - forces[0]).cwiseAbs().maxCoeff(), 1e-2) << i;  // N, of ~34 N per wheel
+  }
+}
+
+TEST(MujocoRobot, UnknownContactSolverIsAnInputError) {
+  SimSettings settings = testSettings();
+  settings.solver = "dantzig";
+  EXPECT_THROW({ MujocoRobot robot(settings); }, InputError);
 }
