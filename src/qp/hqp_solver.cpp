@@ -347,10 +347,13 @@ QpStatus HqpSolver::solveReduced(int k) {
     rows = m_in_;
   }
   if (has_box_) {
-    Cy_.block(rows, 0, n, nz) = Z;
-    ylo_.segment(rows, n) = x_lo_ - xp;
-    yup_.segment(rows, n) = x_up_ - xp;
-    rows += n;
+    for (int j = 0; j < n; ++j) {
+      if (x_lo_[j] == -kInf && x_up_[j] == kInf) continue;  // an unbounded variable (the floating base): no row
+      Cy_.row(rows).head(nz) = Z.row(j);
+      ylo_[rows] = x_lo_[j] - xp[j];
+      yup_[rows] = x_up_[j] - xp[j];
+      ++rows;
+    }
   }
   // A row whose projection on the null space is negligible is fixed by the levels above (and met by xp):
   // it is dropped, since rounding noise in a near-zero row would read as a large normalised violation.
