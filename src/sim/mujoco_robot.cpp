@@ -220,7 +220,12 @@ void MujocoRobot::controlPeriod(Controller& controller, RobotState& state, Joint
   controller.tick(state, command);
   write(command);
   applyImpedance();
+  // The sensors of mj_step2 (the accelerometer: a full post-constraint RNE pass) are read only by the next
+  // sample, after the period's last step: with more than one step per period, skip them in this first one.
+  const int disable = m_->opt.disableflags;
+  if (settings_.control_decimation > 1) m_->opt.disableflags |= mjDSBL_SENSOR;
   mj_step2(m_, d_);
+  m_->opt.disableflags = disable;
   for (int k = 1; k < settings_.control_decimation; ++k) physicsStep();
 }
 
