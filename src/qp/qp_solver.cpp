@@ -225,6 +225,41 @@ void QpSolver::restoreDualFeasibility() {
   }
 }
 
+bool QpSolver::unconstrainedMinimiserIsFeasible(const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>>& llt, int n_box) {
+  // Fast path of a solve without equalities and without a warm-start active set: x = -H^-1 g from the Cholesky
+  // factor (two triangular solves, no inverse). If it violates no row or bound (the main loop's test), it is the
+  // optimum with all multipliers zero: exactly where the dual method would stop at its first check.
+  if (m_eq_ > 0 || (settings_.warm_start && n_prev_ > 0)) return false;
+  for (int i = 0; i < m_in_; ++i)
+    if ((*c_lo_)[i] == (*c_up_)[i]) return false;
+  for (int j = 0; j < n_box; ++j)
+    if ((*x_lo_)[j] == (*x_up_)[j]) return false;
+  auto x = x_.head(n_);
+  x = -(*g_);
+  llt.solveInPlace(x);
+  const double ftol = settings_.feasibility_tol;
+  auto violated = [ftol](double b, double value, double norm, double sign) {
+    if (!(std::abs(b) < kInf)) return false;
+    const double v = sign * (b - value) / norm;
+    return v > ftol * std::max(1.0, std::abs(b) / norm);
+  };
+  if (m_in_ > 0) cx_.head(m_in_).noalias() = (*C_) * x;
+  for (int i = 0; i < m_in_; ++i)
+    if (violated((*c_lo_)[i], cx_[i], row_norm_[i], 1.0) || violated((*c_up_)[i], cx_[i], row_norm_[i], -1.0))
+      return false;
+  for (int j = 0; j < n_box; ++j)
+    if (violated((*x_lo_)[j], x[j], 1.0, 1.0) || violated((*x_up_)[j], x[j], 1.0, -1.0)) return false;
+  iq_ = 0;
+  n_prev_ = 0;
+  prev_n_ = n_;
+  prev_m_eq_ = m_eq_;
+  prev_m_in_ = m_in_;
+  prev_box_ = has_box_;
+  tmp_.head(n_).noalias() = (*H_) * x;
+  objective_ = 0.5 * x.dot(tmp_.head(n_)) + g_->dot(x);
+  return true;
+}
+
 QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::Ref<const Eigen::VectorXd>& g,
                          const Eigen::Ref<const Eigen::MatrixXd>& A_eq, const Eigen::Ref<const Eigen::VectorXd>& b_eq,
                          const Eigen::Ref<const Eigen::MatrixXd>& C, const Eigen::Ref<const Eigen::VectorXd>& c_lo,
@@ -263,6 +298,7 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
   x_lo_ = &x_lo;
   x_up_ = &x_up;
   g_ = &g;
+  H_ = &H;
   const int n_box = box ? n : 0;
   const int n_ids = m_eq + 2 * m_in + 2 * n_box;
   std::fill(in_active_.begin(), in_active_.begin() + n_ids, 0);
@@ -286,6 +322,7 @@ QpStatus QpSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen
     n_prev_ = 0;
     return status_ = QpStatus::kNotPositiveDefinite;
   }
+  if (unconstrainedMinimiserIsFeasible(llt, n_box)) return status_ = QpStatus::kOptimal;
   Eigen::Ref<Eigen::MatrixXd> J = J_.topLeftCorner(n, n);
   J.setIdentity();
   llt.matrixU().solveInPlace(J);

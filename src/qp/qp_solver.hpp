@@ -101,6 +101,8 @@ class QpSolver {
   void recomputePrimalDual();        // x and u from the current factorisation (warm start)
   void restoreDualFeasibility();     // recompute, dropping negative inequality multipliers
   bool isDependent() const;          // from d_ after computeD
+  // x = -H^-1 g if no equality, no warm-start set and no row or bound violated (then the optimum)
+  bool unconstrainedMinimiserIsFeasible(const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>>& llt, int n_box);
 
   QpSettings settings_;
   int n_max_ = 0, n_ = 0, m_eq_max_ = 0, m_in_max_ = 0;
@@ -116,6 +118,7 @@ class QpSolver {
   const Eigen::Ref<const Eigen::VectorXd>* x_lo_ = nullptr;
   const Eigen::Ref<const Eigen::VectorXd>* x_up_ = nullptr;
   const Eigen::Ref<const Eigen::VectorXd>* g_ = nullptr;
+  const Eigen::Ref<const Eigen::MatrixXd>* H_ = nullptr;
 
   Eigen::MatrixXd L_;   // n x n, Cholesky factor (in place)
   Eigen::MatrixXd J_;   // n x n, J = L^-T Q
