@@ -280,3 +280,31 @@ TEST(MujocoRobot, UnknownContactSolverIsAnInputError) {
   settings.solver = "dantzig";
   EXPECT_THROW({ MujocoRobot robot(settings); }, InputError);
 }
+
+TEST(MujocoRobot, SampledAccelerometerIsTheLastStepsEvenWhenTheFirstStepSkipsIt) {
+  // With 2 physics steps per period the first step of each period skips the accelerometer pass; the sample must
+  // still be the accelerometer of the step just before it. Reference: the same physics with 1 step per period
+  // (every step computes its sensors) and the same constant command, sampled after the same number of steps.
+  SimSettings two = testSettings(), one = testSettings();
+  one.control_decimation = 1;
+  MujocoRobot a(two), b(one);
+  RecordingController ca(50.0, 2.0), cb(50.0, 2.0);  // constant references: the same command at any rate
+  RobotState sa, sb;
+  sa.resize(2);
+  sb.resize(2);
+  JointCommand ka, kb;
+  a.read(sa);
+  b.read(sb);
+  ca.start(sa, ka);
+  cb.start(sb, kb);
+  double max_acc = 0.0;
+  for (int k = 0; k < 400; ++k) {  // 0.4 s: the robot drops onto its wheels and bounces (large accelerations)
+    a.controlPeriod(ca, sa, ka);  // sa: the sample at the start of this period, after 2k steps
+    b.controlPeriod(cb, sb, kb);  // sb: the sample after the same 2k steps
+    ASSERT_EQ(sa.t, sb.t);
+    ASSERT_EQ(sa.imu_acc, sb.imu_acc) << "period " << k;
+    b.controlPeriod(cb, sb, kb);
+    max_acc = std::max(max_acc, (sa.imu_acc - Eigen::Vector3d(0.0, 0.0, 9.81)).norm());
+  }
+  EXPECT_GT(max_acc, 0.1);  // the comparison saw real accelerations, not a resting robot only
+}
