@@ -5,6 +5,10 @@
 // The whole-body controller's tick (HQP IK + contact detection + force distribution) timed in closed loop on
 // CENTAURO standing in MuJoCo (default stack config/stack_stand.yaml): median / p99 / max of tick() and of its
 // HQP update+solve, in microseconds (steady clock).
+// centaur bench jump --primitives P.h5 [--flywheel F.h5] [--jumps ...] [--modes ...] [--repeat N] [--json]
+// The closed-loop real-time factor of `simulate <jump> --stabilizer <mode>` (physics, impedance and the 1 kHz
+// whole-body tick; outputs off), each run alone (one at a time), the (jump, mode) pairs interleaved N times so that
+// a change of the machine's speed spreads over all of them; median, min and max per pair.
 // (Timings are measured, never asserted in tests; record them in docs/benchmarks.md.)
 #include <nlohmann/json.hpp>
 
@@ -18,6 +22,7 @@
 #include "common/error.hpp"
 #include "controller/whole_body_controller.hpp"
 #include "planner/jump_problem.hpp"
+#include "sim/compare_runner.hpp"
 #include "sim/mujoco_robot.hpp"
 #include "sim/sim_config.hpp"
 
@@ -30,6 +35,9 @@ struct BenchArgs {
   int ticks = 5000;
   std::string stack;
   bool json = false;
+  std::string primitives, flywheel;  // jump: the plans to replay
+  std::vector<std::string> jumps = {"squat-jump", "half-squat-jump"};
+  std::vector<std::string> modes = {"none", "raibert", "angmom", "ocp"};
 };
 
 double median(std::vector<double> v) {
@@ -138,6 +146,56 @@ nlohmann::json benchTick(const BenchArgs& a) {
   return j;
 }
 
+nlohmann::json benchJump(const BenchArgs& a) {
+  if (a.primitives.empty()) throw InputError("bench jump: --primitives FILE is required (e.g. out/primitives.h5)");
+  const bool ocp = std::find(a.modes.begin(), a.modes.end(), "ocp") != a.modes.end();
+  if (ocp && a.flywheel.empty())
+    throw InputError("bench jump: mode ocp needs --flywheel FILE (centaur plan arm-flywheel --out FILE)");
+  std::vector<sim::BatchRun> runs;
+  for (int r = 0; r < a.repeat; ++r) {
+    for (const std::string& jump : a.jumps) {
+      for (const std::string& mode : a.modes) {
+        sim::BatchRun run;
+        run.label = jump + "/" + mode;
+        run.scenario = jump;
+        run.options = {{"primitive", a.primitives}, {"stabilizer", mode}};
+        if (mode == "ocp") run.options["flywheel"] = a.flywheel;
+        runs.push_back(run);
+      }
+    }
+  }
+  sim::BatchCallbacks cb;
+  cb.finished = [&](std::size_t i, const sim::BatchResult& res, std::size_t done, std::size_t total) {
+    std::fprintf(stderr, "  [%zu/%zu] %-26s %s, real-time factor %.2f\n", done, total, runs[i].label.c_str(),
+                 res.status == sim::BatchResult::Status::Completed ? res.summary.outcome.c_str() : res.error.c_str(),
+                 res.summary.real_time_factor);
+  };
+  const std::vector<sim::BatchResult> results = sim::runBatch(runs, 1, cb);
+  nlohmann::json j;
+  j["target"] = "jump";
+  j["repeat"] = a.repeat;
+  for (const std::string& jump : a.jumps) {
+    for (const std::string& mode : a.modes) {
+      std::vector<double> rtf;
+      std::string outcome;
+      for (std::size_t i = 0; i < runs.size(); ++i) {
+        if (runs[i].label != jump + "/" + mode) continue;
+        if (results[i].status != sim::BatchResult::Status::Completed) {
+          throw InputError("bench jump " + runs[i].label + ": " + results[i].error);
+        }
+        rtf.push_back(results[i].summary.real_time_factor);
+        outcome = results[i].summary.outcome;  // deterministic: the same in every repetition
+      }
+      nlohmann::json& e = j["runs"][jump][mode];
+      e["outcome"] = outcome;
+      e["real_time_factor_median"] = median(rtf);
+      e["real_time_factor_min"] = *std::min_element(rtf.begin(), rtf.end());
+      e["real_time_factor_max"] = *std::max_element(rtf.begin(), rtf.end());
+    }
+  }
+  return j;
+}
+
 int runBench(const BenchArgs& a) {
   nlohmann::json out;
   if (a.target == "planner") {
@@ -160,21 +218,46 @@ int runBench(const BenchArgs& a) {
                  out["tick_us_max"].get<double>(), out["qp_us_median"].get<double>(),
                  out["qp_us_p99"].get<double>(), out["status"].get<std::string>().c_str());
   }
+  if (a.target == "jump") {
+    std::fprintf(stderr, "bench jump: %zu jumps x %zu modes x %d repetitions, one run at a time ...\n",
+                 a.jumps.size(), a.modes.size(), a.repeat);
+    out = benchJump(a);
+    for (const auto& jump : out["runs"].items()) {
+      for (const auto& mode : jump.value().items()) {
+        const auto& e = mode.value();
+        std::fprintf(stderr, "  %-16s %-8s %-8s real-time factor median %.2f [%.2f - %.2f]\n", jump.key().c_str(),
+                     mode.key().c_str(), e["outcome"].get<std::string>().c_str(),
+                     e["real_time_factor_median"].get<double>(), e["real_time_factor_min"].get<double>(),
+                     e["real_time_factor_max"].get<double>());
+      }
+    }
+  }
   if (a.json) printJsonLine(out.dump());
   return kExitOk;
 }
 
-const Registrar kBench{{"bench", "Measure performance (planner: cold solves of both jumps; tick: whole-body controller)",
+const Registrar kBench{{"bench",
+                        "Measure performance (planner: cold solves of both jumps; tick: whole-body controller; "
+                        "jump: closed-loop real-time factor of the simulated jumps)",
                         [](CLI::App& sub) {
                           auto a = std::make_shared<BenchArgs>();
-                          sub.add_option("target", a->target, "what to measure: planner, tick")
+                          sub.add_option("target", a->target, "what to measure: planner, tick, jump")
                               ->required()
-                              ->check(CLI::IsMember({"planner", "tick"}));
+                              ->check(CLI::IsMember({"planner", "tick", "jump"}));
                           sub.add_option("--ticks", a->ticks, "tick: control periods timed (1 ms each)")
                               ->check(CLI::Range(10, 1000000));
                           sub.add_option("--stack", a->stack, "tick: stack YAML (default config/stack_stand.yaml)");
-                          sub.add_option("--repeat", a->repeat, "cold runs per case (median reported)")
+                          sub.add_option("--repeat", a->repeat,
+                                         "planner: cold runs per case; jump: runs per (jump, mode); median reported")
                               ->check(CLI::Range(1, 100));
+                          sub.add_option("--primitives", a->primitives, "jump: primitive file with the jumps")
+                              ->check(CLI::ExistingFile);
+                          sub.add_option("--flywheel", a->flywheel, "jump: arm-flywheel file (mode ocp)")
+                              ->check(CLI::ExistingFile);
+                          sub.add_option("--jumps", a->jumps, "jump: the jumps")
+                              ->check(CLI::IsMember({"squat-jump", "half-squat-jump"}));
+                          sub.add_option("--modes", a->modes, "jump: the stabilizer modes")
+                              ->check(CLI::IsMember({"none", "raibert", "angmom", "ocp"}));
                           sub.add_flag("--json", a->json, "print a JSON object as the last line of stdout");
                           return [a]() { return runBench(*a); };
                         }}};
