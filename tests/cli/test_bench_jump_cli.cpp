@@ -17,13 +17,6 @@ namespace {
 using centaur_test::CliRun;
 using centaur_test::run;
 
-std::string lastLine(const std::string& s) {
-  std::string t = s;
-  while (!t.empty() && t.back() == '\n') t.pop_back();
-  const auto pos = t.rfind('\n');
-  return pos == std::string::npos ? t : t.substr(pos + 1);
-}
-
 }  // namespace
 
 TEST(BenchJumpCli, ReportsTheRealTimeFactorOfEveryRequestedPair) {
@@ -32,7 +25,7 @@ TEST(BenchJumpCli, ReportsTheRealTimeFactorOfEveryRequestedPair) {
   ASSERT_EQ(run("plan squat-jump --quiet --out " + prims).code, 0);
   const CliRun r = run("bench jump --primitives " + prims + " --jumps squat-jump --modes none raibert --repeat 2 --json");
   ASSERT_EQ(r.code, 0) << r.out;
-  const nlohmann::json j = nlohmann::json::parse(lastLine(r.out));
+  const nlohmann::json j = nlohmann::json::parse(r.last_line);
   EXPECT_EQ(j.at("target"), "jump");
   EXPECT_EQ(j.at("repeat"), 2);
   ASSERT_EQ(j.at("runs").size(), 1u);

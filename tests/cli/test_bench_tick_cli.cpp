@@ -15,19 +15,12 @@ namespace {
 using centaur_test::CliRun;
 using centaur_test::run;
 
-std::string lastLine(const std::string& s) {
-  std::string t = s;
-  while (!t.empty() && t.back() == '\n') t.pop_back();
-  const auto pos = t.rfind('\n');
-  return pos == std::string::npos ? t : t.substr(pos + 1);
-}
-
 }  // namespace
 
 TEST(BenchTickCli, PrintsTickAndQpTimesAsTheLastJsonLine) {
   const CliRun r = run("bench tick --ticks 300 --json");
   ASSERT_EQ(r.code, 0) << r.out;
-  const nlohmann::json j = nlohmann::json::parse(lastLine(r.out));
+  const nlohmann::json j = nlohmann::json::parse(r.last_line);
   EXPECT_EQ(j.at("target"), "tick");
   EXPECT_EQ(j.at("ticks"), 300);
   EXPECT_EQ(j.at("status"), "ok");

@@ -28,15 +28,6 @@ std::string readFile(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-std::string lastLine(const std::string& s) {
-  std::istringstream in(s);
-  std::string line, last;
-  while (std::getline(in, line)) {
-    if (!line.empty()) last = line;
-  }
-  return last;
-}
-
 }  // namespace
 
 TEST(CompareCli, BadFlagsExit2AndWriteNothing) {
@@ -96,7 +87,7 @@ TEST(CompareCli, SmallComparisonWritesTablesPlotAndCsvSameOnOneAndTwoThreads) {
   EXPECT_EQ(width, 1100);
 
   // --json: one object on the last line, runs as in compare.json, every listed file exists.
-  const nlohmann::json j = nlohmann::json::parse(lastLine(r.out));
+  const nlohmann::json j = nlohmann::json::parse(r.last_line);
   ASSERT_TRUE(j.contains("runs") && j.contains("files") && j.contains("wall_time_s")) << j.dump();
   ASSERT_EQ(j["runs"].size(), 2u);
   EXPECT_EQ(j["runs"], nlohmann::json::parse(readFile((fs::path(a) / "compare.json").string())));

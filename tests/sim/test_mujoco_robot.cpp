@@ -49,6 +49,14 @@ class RecordingController : public Controller {
   double kp_, kd_;
 };
 
+/// Start `ctrl` on the robot's first measurement and run `periods` control periods; s is the last sample.
+void startAndRun(MujocoRobot& robot, Controller& ctrl, RobotState& s, JointCommand& c, int periods) {
+  s.resize(robot.numJoints());
+  robot.read(s);
+  ctrl.start(s, c);
+  for (int k = 0; k < periods; ++k) robot.controlPeriod(ctrl, s, c);
+}
+
 }  // namespace
 
 TEST(MujocoRobot, LoadsTestModelInActuatorOrder) {
@@ -164,11 +172,8 @@ TEST(MujocoRobot, ImuAndGroundTruthContactForcesAtRest) {
   MujocoRobot robot(testSettings());
   RecordingController ctrl(50.0, 2.0);
   RobotState s;
-  s.resize(2);
   JointCommand c;
-  robot.read(s);
-  ctrl.start(s, c);
-  for (int k = 0; k < 1500; ++k) robot.controlPeriod(ctrl, s, c);  // 1.5 s: settled
+  startAndRun(robot, ctrl, s, c, 1500);  // 1.5 s: settled
   const double mass = 14.0, g = 9.81;
   Eigen::Matrix3Xd f(3, 4);
   robot.contactForces(f);
@@ -260,11 +265,8 @@ TEST(MujocoRobot, EveryContactSolverReachesTheSameContactSolution) {
         << solver;  // the test model's own option is Newton
     RecordingController ctrl(50.0, 2.0);
     RobotState s;
-    s.resize(2);
     JointCommand c;
-    robot.read(s);
-    ctrl.start(s, c);
-    for (int k = 0; k < 500; ++k) robot.controlPeriod(ctrl, s, c);
+    startAndRun(robot, ctrl, s, c, 500);
     base.push_back(robot.basePosition());
     forces.emplace_back(3, 4);
     robot.contactForces(forces.back());
@@ -290,13 +292,9 @@ TEST(MujocoRobot, SampledAccelerometerIsTheLastStepsEvenWhenTheFirstStepSkipsIt)
   MujocoRobot a(two), b(one);
   RecordingController ca(50.0, 2.0), cb(50.0, 2.0);  // constant references: the same command at any rate
   RobotState sa, sb;
-  sa.resize(2);
-  sb.resize(2);
   JointCommand ka, kb;
-  a.read(sa);
-  b.read(sb);
-  ca.start(sa, ka);
-  cb.start(sb, kb);
+  startAndRun(a, ca, sa, ka, 0);
+  startAndRun(b, cb, sb, kb, 0);
   double max_acc = 0.0;
   for (int k = 0; k < 400; ++k) {  // 0.4 s: the robot drops onto its wheels and bounces (large accelerations)
     a.controlPeriod(ca, sa, ka);  // sa: the sample at the start of this period, after 2k steps

@@ -12,7 +12,7 @@ namespace centaur_test {
 struct CliRun {
   int code = 0;
   std::string out;        ///< stdout (+ stderr when merged)
-  std::string last_line;  ///< the last line of out, with its newline
+  std::string last_line;  ///< the last line of out (trailing newlines dropped)
 };
 
 /// Runs `CENTAUR_BIN args`; stderr goes into out (merge_stderr) or to /dev/null.
@@ -25,10 +25,12 @@ inline CliRun run(const std::string& args, bool merge_stderr = true) {
     return r;
   }
   std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) {
-    r.out += buf.data();
-    r.last_line = buf.data();
-  }
+  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  // The last line from the whole output: a line longer than the read buffer (a JSON summary) arrives in pieces.
+  std::string::size_type end = r.out.size();
+  while (end > 0 && r.out[end - 1] == '\n') --end;
+  const std::string::size_type begin = r.out.rfind('\n', end == 0 ? 0 : end - 1);
+  r.last_line = r.out.substr(begin == std::string::npos ? 0 : begin + 1);
   const int status = pclose(p);
   r.code = WEXITSTATUS(status);
   return r;
