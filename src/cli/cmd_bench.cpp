@@ -180,9 +180,11 @@ nlohmann::json benchJump(const BenchArgs& a) {
       std::string outcome;
       for (std::size_t i = 0; i < runs.size(); ++i) {
         if (runs[i].label != jump + "/" + mode) continue;
-        if (results[i].status != sim::BatchResult::Status::Completed) {
+        const sim::BatchResult::Status st = results[i].status;
+        if (st == sim::BatchResult::Status::BadInput)
           throw InputError("bench jump " + runs[i].label + ": " + results[i].error);
-        }
+        if (st != sim::BatchResult::Status::Completed)
+          throw RuntimeError("bench jump " + runs[i].label + ": " + results[i].error);
         rtf.push_back(results[i].summary.real_time_factor);
         outcome = results[i].summary.outcome;  // deterministic: the same in every repetition
       }

@@ -130,15 +130,14 @@ void HqpSolver::assembleFirst() {
   row = 0;
   for (const Term& t : stack_.levels[0].terms) {
     const int m = t.size();
-    auto A = HZ_.topLeftCorner(m, nu);
-    if (all) {
-      A = E_.middleRows(row, m);
-    } else {
+    auto A = HZ_.topLeftCorner(m, nu);  // the term's rows on the used columns (E_'s own rows if all are used)
+    if (!all)
       for (int b = 0; b < nu; ++b) A.col(b) = E_.col(used_[b]).segment(row, m);
-    }
+    const Eigen::Ref<const Eigen::MatrixXd> At = all ? Eigen::Ref<const Eigen::MatrixXd>(E_.middleRows(row, m))
+                                                     : Eigen::Ref<const Eigen::MatrixXd>(A);
     auto WA = WAs_.topLeftCorner(m, nu);
-    weigh(t, A, WA);
-    productNoAlloc(H, A.transpose(), WA, true);
+    weigh(t, At, WA);
+    productNoAlloc(H, At.transpose(), WA, true);
     g.noalias() -= WA.transpose() * b0_.segment(row, m);
     row += m;
   }
