@@ -227,6 +227,19 @@ YAML::Node loadYamlString(const std::string& text, const std::string& label) {
   }
 }
 
+YAML::Node loadLayered(const YAML::Node& defaults, const std::string& file, const std::vector<std::string>& overrides,
+                       std::string& label) {
+  YAML::Node root = defaults;
+  label = "<defaults>";
+  if (!file.empty()) {
+    root = mergeYaml(root, loadYamlFile(file));
+    label = file;
+  }
+  for (const auto& o : overrides) applyOverride(root, o);
+  if (!overrides.empty()) label += " (with --set overrides)";
+  return root;
+}
+
 YAML::Node mergeYaml(const YAML::Node& base, const YAML::Node& over) {
   if (!over || over.IsNull()) return YAML::Clone(base);
   if (!base || !base.IsMap() || !over.IsMap()) return YAML::Clone(over);

@@ -69,6 +69,11 @@ YAML::Node loadYamlString(const std::string& text, const std::string& label);
 /// Deep merge: every key of `over` replaces or extends the one in `base` (mappings merged recursively).
 YAML::Node mergeYaml(const YAML::Node& base, const YAML::Node& over);
 
+/// The configuration layers of a command: `defaults` <- the file (if not "") <- the "key=value" overrides.
+/// `label` receives what messages name: the file (or "<defaults>"), plus " (with --set overrides)" if any.
+YAML::Node loadLayered(const YAML::Node& defaults, const std::string& file, const std::vector<std::string>& overrides,
+                       std::string& label);
+
 /// Emit as block-style YAML text.
 std::string toYamlString(const YAML::Node& node);
 

@@ -89,14 +89,8 @@ ArmFlywheelConfig parseArmFlywheelConfig(const YAML::Node& root, const std::stri
 }
 
 ArmFlywheelConfig loadArmFlywheelConfig(const std::string& file, const std::vector<std::string>& overrides) {
-  YAML::Node root = loadYamlString(kArmFlywheelDefaults, "<defaults>");
-  std::string label = "<defaults>";
-  if (!file.empty()) {
-    root = mergeYaml(root, loadYamlFile(file));
-    label = file;
-  }
-  for (const auto& o : overrides) applyOverride(root, o);
-  if (!overrides.empty()) label += " (with --set overrides)";
+  std::string label;
+  const YAML::Node root = loadLayered(loadYamlString(kArmFlywheelDefaults, "<defaults>"), file, overrides, label);
   return parseArmFlywheelConfig(root, label);
 }
 

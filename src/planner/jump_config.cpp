@@ -203,14 +203,8 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
 }
 
 JumpConfig loadJumpConfig(const std::string& primitive, const std::string& file, const std::vector<std::string>& overrides) {
-  YAML::Node root = loadYamlString(defaultJumpYaml(primitive), "<defaults>");
-  std::string label = "<defaults>";
-  if (!file.empty()) {
-    root = mergeYaml(root, loadYamlFile(file));
-    label = file;
-  }
-  for (const auto& o : overrides) applyOverride(root, o);
-  if (!overrides.empty()) label += " (with --set overrides)";
+  std::string label;
+  YAML::Node root = loadLayered(loadYamlString(defaultJumpYaml(primitive), "<defaults>"), file, overrides, label);
   if (root["primitive"] && root["primitive"].as<std::string>() != primitive) {
     throw InputError(label, "primitive", "is '" + root["primitive"].as<std::string>() + "' but the command plans '" + primitive + "'");
   }
