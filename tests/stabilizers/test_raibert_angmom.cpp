@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <memory>
 
 #include "common/yaml_reader.hpp"
 #include "controller/whole_body_controller.hpp"
@@ -25,6 +26,14 @@ Eigen::VectorXd homeQ(const RobotModel& m) {
   q[3] = 1.0;
   q.tail(m.numJoints()) = m.homeJoints();
   return q;
+}
+
+/// `stab` started on the model's joints at home, and a whole-body controller with its stack.
+std::unique_ptr<WholeBodyController> controllerFor(Stabilizer& stab, const RobotModel& m) {
+  stab.start(m.jointNames(), m.homeJoints());
+  WholeBodyParams wp;
+  wp.stack_yaml = stab.stackYaml();
+  return std::make_unique<WholeBodyController>(kModel, wp);
 }
 }  // namespace
 
@@ -51,17 +60,14 @@ TEST(Raibert, PostureOffsetIsTheIntegratedPitchRate) {
   p.leak_rate = 0.0;
   RaibertStabilizer stab(p);
   RobotModel m(kModel);
-  stab.start(m.jointNames(), m.homeJoints());
-  WholeBodyParams wp;
-  wp.stack_yaml = stab.stackYaml();
-  WholeBodyController wbc(kModel, wp);
+  const auto wbc = controllerFor(stab, m);
   RobotState state;
   state.resize(m.numJoints());
   const double dt = 0.001;
   state.imu_omega = Eigen::Vector3d(0.3, 0.5, -0.2);  // only the pitch rate counts
-  for (int k = 0; k < 200; ++k) stab.update(state, dt, true, wbc);  // 0.1 rad of pitch
+  for (int k = 0; k < 200; ++k) stab.update(state, dt, true, *wbc);  // 0.1 rad of pitch
   state.imu_omega.y() = -0.25;
-  for (int k = 0; k < 200; ++k) stab.update(state, dt, true, wbc);  // -0.05 rad: 0.05 rad in total
+  for (int k = 0; k < 200; ++k) stab.update(state, dt, true, *wbc);  // -0.05 rad: 0.05 rad in total
   for (std::size_t s = 0; s < p.joints.size(); ++s) {
     const int i = m.jointIndex(p.joints[s]);
     EXPECT_NEAR(stab.postureReference()[i] - m.homeJoints()[i], p.gains[s] * p.directions[s] * 0.05, 1e-9);
@@ -73,7 +79,7 @@ TEST(Raibert, PostureOffsetIsTheIntegratedPitchRate) {
   }
   // clamped at max_offset
   state.imu_omega.y() = 100.0;
-  for (int k = 0; k < 1000; ++k) stab.update(state, dt, true, wbc);
+  for (int k = 0; k < 1000; ++k) stab.update(state, dt, true, *wbc);
   const int e = m.jointIndex("j_arm1_4");
   EXPECT_NEAR(stab.postureReference()[e] - m.homeJoints()[e], p.max_offset, 1e-12);
 }
@@ -83,16 +89,13 @@ TEST(Angmom, PelvisReferenceIsMinusTheWorldImuRate) {
   p.gain = 0.5;
   AngmomStabilizer stab(p);
   RobotModel m(kModel);
-  stab.start(m.jointNames(), m.homeJoints());
-  WholeBodyParams wp;
-  wp.stack_yaml = stab.stackYaml();
-  WholeBodyController wbc(kModel, wp);
+  const auto wbc = controllerFor(stab, m);
   RobotState state;
   state.resize(m.numJoints());
   state.imu_quat = Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
   state.imu_omega = Eigen::Vector3d(0.1, 0.7, 0.0);
-  stab.update(state, 0.001, true, wbc);
-  const auto& pelvis = wbc.stack().tasks.at("pelvis");
+  stab.update(state, 0.001, true, *wbc);
+  const auto& pelvis = wbc->stack().tasks.at("pelvis");
   pelvis->update();  // b = omega_fb,d (lambda 1) on the model's last update
   const Eigen::Vector3d expected = -0.5 * (state.imu_quat * state.imu_omega);
   EXPECT_TRUE(pelvis->b().head<3>().isApprox(expected, 1e-12)) << pelvis->b().transpose();
@@ -103,17 +106,14 @@ TEST(Stabilizers, UpdateNeverAllocates) {
   RaibertStabilizer raibert{RaibertParams{}};
   AngmomStabilizer angmom{AngmomParams{}};
   raibert.start(m.jointNames(), m.homeJoints());
-  angmom.start(m.jointNames(), m.homeJoints());
-  WholeBodyParams wp;
-  wp.stack_yaml = angmom.stackYaml();
-  WholeBodyController wbc(kModel, wp);
+  const auto wbc = controllerFor(angmom, m);
   RobotState state;
   state.resize(m.numJoints());
   state.imu_omega = Eigen::Vector3d(0.1, 0.7, 0.0);
   const long before = centaur_test::heapAllocations();
   for (int k = 0; k < 1000; ++k) {
-    raibert.update(state, 0.001, true, wbc);
-    angmom.update(state, 0.001, true, wbc);
+    raibert.update(state, 0.001, true, *wbc);
+    angmom.update(state, 0.001, true, *wbc);
   }
   EXPECT_EQ(centaur_test::heapAllocations() - before, 0);
 }
