@@ -38,6 +38,23 @@ std::string sidecarPath(const std::string& out, const std::string& name) {
   return (p.parent_path() / (p.stem().string() + "." + name + ".yaml")).string();
 }
 
+// The solver line of the progress output and the solver fields of --json, the same for every primitive.
+void printSolveLine(const std::string& name, const planner::SolveInfo& info) {
+  std::fprintf(stderr, "%s: %s after %d iterations in %.3f s, cost %.6g, max violation %.2e\n", name.c_str(),
+               info.status.c_str(), info.iterations, info.solve_time_s, info.cost, info.max_constraint_violation);
+}
+
+nlohmann::json solveJson(const std::string& name, const planner::SolveInfo& info) {
+  nlohmann::json j;
+  j["primitive"] = name;
+  j["status"] = info.status;
+  j["iterations"] = info.iterations;
+  j["solve_time_s"] = info.solve_time_s;
+  j["cost"] = info.cost;
+  j["max_constraint_violation"] = info.max_constraint_violation;
+  return j;
+}
+
 // The arm-flywheel trajectory (stabilizer 3): same flags, exit codes and sidecar as the jumps.
 int runArmPlan(const PlanArgs& a) {
   const planner::ArmFlywheelConfig cfg = planner::loadArmFlywheelConfig(a.config, a.overrides);
@@ -52,21 +69,13 @@ int runArmPlan(const PlanArgs& a) {
   double torque_ratio = 0.0;
   for (int j = 0; j < 7; ++j) torque_ratio = std::max(torque_ratio, tr.tau.col(j).cwiseAbs().maxCoeff() / tr.tau_max_model[j]);
   if (!a.quiet) {
-    std::fprintf(stderr, "arm-flywheel: %s after %d iterations in %.3f s, cost %.6g, max violation %.2e\n",
-                 result.info.status.c_str(), result.info.iterations, result.info.solve_time_s, result.info.cost,
-                 result.info.max_constraint_violation);
+    printSolveLine("arm-flywheel", result.info);
     std::fprintf(stderr, "  period %.3f s, h_y mean %.3f N m s (peak %.3f), peak |tau|/limit %.2f, written to %s\n",
                  tr.period, h_mean, h_peak, torque_ratio, a.out.c_str());
     if (!ok) std::fprintf(stderr, "warning: the solver did not converge; the file is written and flagged (solve_status)\n");
   }
   if (a.json) {
-    nlohmann::json j;
-    j["primitive"] = tr.name;
-    j["status"] = result.info.status;
-    j["iterations"] = result.info.iterations;
-    j["solve_time_s"] = result.info.solve_time_s;
-    j["cost"] = result.info.cost;
-    j["max_constraint_violation"] = result.info.max_constraint_violation;
+    nlohmann::json j = solveJson(tr.name, result.info);
     j["duration_s"] = tr.period;
     j["h_y_mean_Nms"] = h_mean;
     j["h_y_peak_Nms"] = h_peak;
@@ -96,21 +105,13 @@ int runPlan(const PlanArgs& a) {
   const auto s = planner::summarize(prim);
   const bool ok = result.info.solved();
   if (!a.quiet) {
-    std::fprintf(stderr, "%s: %s after %d iterations in %.3f s, cost %.6g, max violation %.2e\n", prim.name.c_str(),
-                 result.info.status.c_str(), result.info.iterations, result.info.solve_time_s, result.info.cost,
-                 result.info.max_constraint_violation);
+    printSolveLine(prim.name, result.info);
     std::fprintf(stderr, "  duration %.3f s, flight %.3f s, apex waist height %.3f m (+%.3f m), written to %s\n",
                  s.duration, s.flight_time, s.apex_height, s.apex_gain, a.out.c_str());
     if (!ok) std::fprintf(stderr, "warning: the solver did not converge; the file is written and flagged (solve_status)\n");
   }
   if (a.json) {
-    nlohmann::json j;
-    j["primitive"] = prim.name;
-    j["status"] = result.info.status;
-    j["iterations"] = result.info.iterations;
-    j["solve_time_s"] = result.info.solve_time_s;
-    j["cost"] = result.info.cost;
-    j["max_constraint_violation"] = result.info.max_constraint_violation;
+    nlohmann::json j = solveJson(prim.name, result.info);
     j["duration_s"] = s.duration;
     j["flight_time_s"] = s.flight_time;
     j["apex_height_m"] = s.apex_height;
