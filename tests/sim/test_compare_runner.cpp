@@ -14,6 +14,7 @@
 #include "sim/compare_runner.hpp"
 #include "sim/scenario.hpp"
 #include "support/temp_dir.hpp"
+#include "noisy_hold.hpp"
 
 using namespace centaur;
 using namespace centaur::sim;
@@ -26,25 +27,6 @@ const std::string kTestModel = std::string(CENTAUR_SOURCE_DIR) + "/tests/data/si
 std::atomic<int> g_active[2];
 std::atomic<int> g_max_active[2];
 
-/// Sensor-driven PD (its output depends on the noisy measurements, so any cross-talk between runs would show).
-class NoisyHold : public Controller {
- public:
-  explicit NoisyHold(double gain) : gain_(gain) {}
-  void start(const RobotState& s, JointCommand& c) override {
-    c.resize(s.q.size());
-    tick(s, c);
-  }
-  void tick(const RobotState& s, JointCommand& c) noexcept override {
-    c.q_ref.setConstant(0.1);
-    c.qd_ref.setZero();
-    c.kp.setConstant(30.0 * gain_);
-    c.kd.setConstant(1.0);
-    c.tau_ff = -0.2 * s.q + 0.05 * s.imu_omega.x() * Eigen::VectorXd::Ones(s.q.size());
-  }
-
- private:
-  double gain_;
-};
 
 const ScenarioRegistrar kRegistrar{Scenario{
     "batch-test", "a scenario for the batch runner test",
@@ -68,7 +50,7 @@ const ScenarioRegistrar kRegistrar{Scenario{
         --g_active[slot];
       }
       const std::string& mode = ctx.options.at("mode");
-      return std::make_unique<NoisyHold>(gain * (mode == "a" ? 1.0 : mode == "b" ? 1.5 : 2.0));
+      return std::make_unique<centaur::test::NoisyHold>(gain * (mode == "a" ? 1.0 : mode == "b" ? 1.5 : 2.0));
     }}};
 
 std::vector<double> readDataset(const std::string& file, const std::string& name) {

@@ -17,6 +17,7 @@
 #include "sim/renderer.hpp"
 #include "sim/scenario.hpp"
 #include "sim/sim_runner.hpp"
+#include "noisy_hold.hpp"
 
 using namespace centaur;
 using namespace centaur::sim;
@@ -68,21 +69,6 @@ std::string readStringAttribute(const std::string& file, const std::string& name
   return s.c_str();
 }
 
-/// Sensor-driven PD on the small test model (its output depends on the noisy measurements).
-class HoldController : public Controller {
- public:
-  void start(const RobotState& s, JointCommand& c) override {
-    c.resize(s.q.size());
-    tick(s, c);
-  }
-  void tick(const RobotState& s, JointCommand& c) noexcept override {
-    c.q_ref.setConstant(0.1);
-    c.qd_ref.setZero();
-    c.kp.setConstant(30.0);
-    c.kd.setConstant(1.0);
-    c.tau_ff = -0.2 * s.q + 0.05 * s.imu_omega.x() * Eigen::VectorXd::Ones(s.q.size());
-  }
-};
 
 }  // namespace
 
@@ -96,7 +82,7 @@ TEST(SimRunner, IdenticalRunsGiveBitwiseIdenticalLogsEvenWithNoiseAndLatency) {
                                            "sensors.noise.gyro=0.01", "sensors.noise.orientation=0.002",
                                            "sensors.latency_periods=2", "sensors.seed=7"});
     MujocoRobot robot(cfg.robot);
-    HoldController ctrl;
+    centaur::test::NoisyHold ctrl;
     RunOutputs out;
     out.log_path = (dir / ("run" + std::to_string(r) + ".h5")).string();
     const RunSummary s = runSimulation(robot, ctrl, cfg, out, "test");
@@ -115,7 +101,7 @@ TEST(SimRunner, LogHasDocumentedShapesUnitsAndConfig) {
   const fs::path dir = tempDir("format");
   SimConfig cfg = loadSimConfig("", "", {"model=" + kTestModel, "duration=0.2"});
   MujocoRobot robot(cfg.robot);
-  HoldController ctrl;
+  centaur::test::NoisyHold ctrl;
   RunOutputs out;
   out.log_path = (dir / "log.h5").string();
   runSimulation(robot, ctrl, cfg, out, "test");
