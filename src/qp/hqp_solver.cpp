@@ -58,7 +58,7 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   const int total_rows = level_offset_.back();
   H_.setZero(n, n);
   g_.setZero(n);
-  b0_.setZero(std::max(level_offset_[1], 1));
+  bE_.setZero(std::max(total_rows, 1));
   E_.setZero(std::max(total_rows, 1), n);
   As_.setZero(max_term_rows, n);
   WAs_.setZero(max_term_rows, n);
@@ -78,6 +78,14 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   for (int k = 0; k < levels; ++k) max_level_rows = std::max(max_level_rows, level_offset_[k + 1] - level_offset_[k]);
   null_space_.reserve(max_level_rows, n);
   B_.setZero(max_level_rows, n);
+  Ad_.setZero(max_level_rows, n);
+  Cd_.setZero(m_in_, n);
+  xd_.setZero(n);
+  blo_.setZero(n);
+  bup_.setZero(n);
+  dense_.assign(n, 0);
+  free_.assign(n, 0);
+  touched_.assign(n, 0);
   const int m_rows = m_in_ + (has_box_ ? n : 0);  // reduced levels: constraint rows and box rows
   for (int k = 0; k < levels; ++k) {
     // level 0: the full problem with box bounds; levels >= 1: the reduced problem (<= n variables, rows only)
@@ -104,14 +112,14 @@ void HqpSolver::update() {
 }
 
 void HqpSolver::assembleFirst() {
-  // The rows of level 0 (into E_, their targets into b0_), then the columns they or a constraint row touch.
+  // The rows of level 0 (into E_, their targets into bE_), then the columns they or a constraint row touch.
   const int m0 = level_offset_[1];
   int row = 0;
   for (const Term& t : stack_.levels[0].terms) {
     const int m = t.size();
     rowsOf(t);
     E_.middleRows(row, m) = As_.topRows(m);
-    b0_.segment(row, m) = bs_.head(m);
+    bE_.segment(row, m) = bs_.head(m);
     row += m;
   }
   n_used_ = 0;
@@ -138,7 +146,7 @@ void HqpSolver::assembleFirst() {
     auto WA = WAs_.topLeftCorner(m, nu);
     weigh(t, At, WA);
     productNoAlloc(H, At.transpose(), WA, true);
-    g.noalias() -= WA.transpose() * b0_.segment(row, m);
+    g.noalias() -= WA.transpose() * bE_.segment(row, m);
     row += m;
   }
   H.diagonal().array() += stack_.regularisation;
@@ -178,7 +186,6 @@ QpStatus HqpSolver::solve(Eigen::Ref<Eigen::VectorXd> x) {
   }
   const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);
   const int levels = numLevels();
-  nz_ = n_;
   for (int k = 0; k < levels; ++k) {
     QpStatus status = QpStatus::kOptimal;
     if (k == 0) {
@@ -237,45 +244,42 @@ QpStatus HqpSolver::solveFirst() {
 }
 
 void HqpSolver::updateNullSpace(int k) {
-  // Z_k = Z_{k-1} N, N a basis of null(A_{k-1} Z_{k-1}) (A_{k-1}: the rows of level k-1; Z_0 = I).
+  // Z_k = Z_{k-1} N, N a basis of null(A_{k-1} Z_{k-1}) (A_{k-1}: the rows of level k-1; Z_0 = I). Z is kept as
+  // Zd (its rows on the dense variables) and unit columns for the free ones, which no row above touches.
   const int first = level_offset_[k - 1];
   const int m = level_offset_[k] - first;
   const int prev = cur_;
   cur_ = 1 - cur_;
-  if (nz_ == 0) return;
-  if (k == 1 && n_used_ < n_) {
-    // Rows of level 0 live on the used columns: Z = [basis of their null space there; identity on the others].
-    const int nu = n_used_;
-    auto B = B_.topLeftCorner(m, nu);
-    for (int b = 0; b < nu; ++b) B.col(b) = E_.col(used_[b]).segment(first, m);
-    null_space_.compute(B, rank_tol_);
-    const int nn = nu - null_space_.rank();
-    nz_ = n_ - null_space_.rank();
-    auto Z = Z_[cur_].leftCols(nz_);
-    Z.setZero();
-    const auto N = null_space_.basis();
-    for (int b = 0; b < nu; ++b) Z.row(used_[b]).head(nn) = N.row(b);
-    for (int j = 0, col = nn, b = 0; j < n_; ++j) {
-      if (b < nu && used_[b] == j) {
-        ++b;
+  if (k == 1) {
+    // Level 0's rows live on its used columns: they are the dense variables, the others are free.
+    n_dense_ = n_free_ = 0;
+    for (int j = 0; j < n_; ++j) {
+      if (n_dense_ < n_used_ && used_[n_dense_] == j) {
+        dense_[n_dense_++] = j;
       } else {
-        Z(j, col++) = 1.0;
+        free_[n_free_++] = j;
       }
     }
-  } else if (k == 1) {
-    null_space_.compute(E_.middleRows(first, m), rank_tol_);
-    nz_ = n_ - null_space_.rank();
-    Z_[cur_].leftCols(nz_) = null_space_.basis();
-  } else {
-    auto B = B_.topLeftCorner(m, nz_);
-    productNoAlloc(B, E_.middleRows(first, m), Z_[prev].leftCols(nz_), false);
+    auto B = B_.topLeftCorner(m, n_dense_);
+    for (int b = 0; b < n_dense_; ++b) B.col(b) = E_.col(dense_[b]).segment(first, m);
+    null_space_.compute(B, rank_tol_);
+    nzd_ = n_dense_ - null_space_.rank();
+    Z_[cur_].topLeftCorner(n_dense_, nzd_) = null_space_.basis();
+  } else if (nzd_ > 0) {
+    // The rows of level k-1 touch dense variables only (the free ones they touch joined after its solve).
+    auto Ad = Ad_.topLeftCorner(m, n_dense_);
+    for (int b = 0; b < n_dense_; ++b) Ad.col(b) = E_.col(dense_[b]).segment(first, m);
+    auto B = B_.topLeftCorner(m, nzd_);
+    productNoAlloc(B, Ad, Z_[prev].topLeftCorner(n_dense_, nzd_), false);
     double scale = 0.0;  // rank threshold relative to the rows before projection
     for (int i = 0; i < m; ++i) scale = std::max(scale, E_.row(first + i).norm());
     null_space_.compute(B, rank_tol_, scale);
-    const int nz_new = nz_ - null_space_.rank();
-    productNoAlloc(Z_[cur_].leftCols(nz_new), Z_[prev].leftCols(nz_), null_space_.basis(), false);
-    nz_ = nz_new;
+    const int nzd_new = nzd_ - null_space_.rank();
+    productNoAlloc(Z_[cur_].topLeftCorner(n_dense_, nzd_new), Z_[prev].topLeftCorner(n_dense_, nzd_),
+                   null_space_.basis(), false);
+    nzd_ = nzd_new;
   }
+  nz_ = nzd_ + n_free_;
 }
 
 void HqpSolver::rowsOf(const Term& t) {
@@ -302,43 +306,77 @@ void HqpSolver::weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M,
 }
 
 QpStatus HqpSolver::solveReduced(int k) {
-  const int n = n_;
   const Eigen::VectorXd& xp = level_x_[k - 1];
   updateNullSpace(k);
-  level_rank_[k] = n - nz_;
-  const int nz = nz_;
-  if (nz == 0) {  // the levels above fix x completely (and every level below)
+  level_rank_[k] = n_ - nz_;
+  if (nz_ == 0) {  // the levels above fix x completely (and every level below)
     level_x_[k] = xp;
     return QpStatus::kOptimal;
   }
-  const auto Z = Z_[cur_].leftCols(nz);
-  // Reduced cost, x = xp + Z y:  sum_t scale_t ||A_t Z y + (A_t xp - lambda_t b_t)||^2_W + eps ||xp + Z y||^2
-  //   Hy = sum (A Z)' W (A Z) + eps I,   gy = sum (A Z)' W (A xp - lambda b) + eps Z' xp   (Z'Z = I).
-  auto Hy = Hy_.topLeftCorner(nz, nz);
-  auto gy = gy_.head(nz);
-  Hy.setZero();
-  gy.noalias() = stack_.regularisation * (Z.transpose() * xp);
-  int row = level_offset_[k];
+  // This level's rows (into E_, for the next level's null space) and the free variables they touch. The
+  // untouched free variables keep their value: their only cost is eps x_j^2 and no row couples them, so they
+  // stay where level 0 put them (0 clipped to the box).
+  const int first = level_offset_[k];
+  const int mk = level_offset_[k + 1] - first;
+  int row = first;
   for (const Term& t : stack_.levels[k].terms) {
     const int m = t.size();
     rowsOf(t);
-    E_.middleRows(row, m) = As_.topRows(m);  // for the next level's null space
+    E_.middleRows(row, m) = As_.topRows(m);
+    bE_.segment(row, m) = bs_.head(m);
     row += m;
-    auto AZ = HZ_.topLeftCorner(m, nz);
-    productNoAlloc(AZ, As_.topRows(m), Z, false);
+  }
+  n_touched_ = 0;
+  int kept = 0;
+  for (int i = 0; i < n_free_; ++i) {
+    const int j = free_[i];
+    if (E_.col(j).segment(first, mk).cwiseAbs().maxCoeff() > 0.0) {
+      touched_[n_touched_++] = j;
+    } else {
+      free_[kept++] = j;
+    }
+  }
+  n_free_ = kept;
+  // The QP in y = [yd; yt]: x = xp + Zd yd on the dense variables, xp + yt on the touched free ones.
+  const int nd = n_dense_, nzd = nzd_, nt = n_touched_, nq = nzd + nt;
+  const auto Zd = Z_[cur_].topLeftCorner(nd, nzd);
+  // Reduced cost: sum_t scale_t ||A_t Z y + (A_t xp - lambda_t b_t)||^2_W + eps ||xp + Z y||^2
+  //   Hy = sum (A Z)' W (A Z) + eps I,   gy = sum (A Z)' W (A xp - lambda b) + eps Z' xp   (Z'Z = I).
+  auto Hy = Hy_.topLeftCorner(nq, nq);
+  auto gy = gy_.head(nq);
+  auto xd = xd_.head(nd);
+  for (int b = 0; b < nd; ++b) xd[b] = xp[dense_[b]];
+  Hy.setZero();
+  gy.head(nzd).noalias() = stack_.regularisation * (Zd.transpose() * xd);
+  for (int i = 0; i < nt; ++i) gy[nzd + i] = stack_.regularisation * xp[touched_[i]];
+  row = first;
+  for (const Term& t : stack_.levels[k].terms) {
+    const int m = t.size();
+    const auto A = E_.middleRows(row, m);
+    auto Ad = Ad_.topLeftCorner(m, nd);
+    for (int b = 0; b < nd; ++b) Ad.col(b) = A.col(dense_[b]);
+    auto AZ = HZ_.topLeftCorner(m, nq);
+    productNoAlloc(AZ.leftCols(nzd), Ad, Zd, false);
+    for (int i = 0; i < nt; ++i) AZ.col(nzd + i) = A.col(touched_[i]);
     auto res = res_.head(m);
-    res.noalias() = As_.topRows(m) * xp;
-    res -= bs_.head(m);
-    auto WAZ = WAs_.topLeftCorner(m, nz);
+    res.noalias() = A * xp;
+    res -= bE_.segment(row, m);
+    auto WAZ = WAs_.topLeftCorner(m, nq);
     weigh(t, AZ, WAZ);
     productNoAlloc(Hy, AZ.transpose(), WAZ, true);
     gy.noalias() += WAZ.transpose() * res;
+    row += m;
   }
   Hy.diagonal().array() += stack_.regularisation;
-  // Rows: c_lo - C xp <= C Z y <= c_up - C xp ;  x_lo - xp <= Z y <= x_up - xp.
+  // Rows: c_lo - C xp <= C Z y <= c_up - C xp (C touches dense variables only: they include level 0's used
+  // columns); the box of a dense variable j is the row x_lo - xp <= Zd(j, :) yd <= x_up - xp, the box of a
+  // touched free one a bound on its own yt.
   int rows = 0;
   if (m_in_ > 0) {
-    productNoAlloc(Cy_.topLeftCorner(m_in_, nz), C_, Z, false);
+    auto Cd = Cd_.topLeftCorner(m_in_, nd);
+    for (int b = 0; b < nd; ++b) Cd.col(b) = C_.col(dense_[b]);
+    productNoAlloc(Cy_.topLeftCorner(m_in_, nzd), Cd, Zd, false);
+    Cy_.block(0, nzd, m_in_, nt).setZero();
     auto cxp = tmp_.head(m_in_);
     cxp.noalias() = C_ * xp;
     ylo_.head(m_in_) = c_lo_ - cxp;
@@ -346,31 +384,60 @@ QpStatus HqpSolver::solveReduced(int k) {
     rows = m_in_;
   }
   if (has_box_) {
-    for (int j = 0; j < n; ++j) {
+    for (int b = 0; b < nd; ++b) {
+      const int j = dense_[b];
       if (x_lo_[j] == -kInf && x_up_[j] == kInf) continue;  // an unbounded variable (the floating base): no row
-      Cy_.row(rows).head(nz) = Z.row(j);
+      Cy_.row(rows).head(nzd) = Zd.row(b);
+      Cy_.row(rows).segment(nzd, nt).setZero();
       ylo_[rows] = x_lo_[j] - xp[j];
       yup_[rows] = x_up_[j] - xp[j];
       ++rows;
+    }
+    blo_.head(nzd).setConstant(-kInf);
+    bup_.head(nzd).setConstant(kInf);
+    for (int i = 0; i < nt; ++i) {
+      const int j = touched_[i];
+      blo_[nzd + i] = x_lo_[j] - xp[j];
+      bup_[nzd + i] = x_up_[j] - xp[j];
     }
   }
   // A row whose projection on the null space is negligible is fixed by the levels above (and met by xp):
   // it is dropped, since rounding noise in a near-zero row would read as a large normalised violation.
   for (int i = 0; i < rows; ++i) {
     const double original = i < m_in_ ? C_.row(i).norm() : 1.0;
-    if (Cy_.row(i).head(nz).norm() <= kNullRowTol * original) {
-      Cy_.row(i).head(nz).setZero();
+    if (Cy_.row(i).head(nq).norm() <= kNullRowTol * original) {
+      Cy_.row(i).head(nq).setZero();
       ylo_[i] = -kInf;
       yup_[i] = kInf;
     }
   }
   const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);
   QpSolver& qp = solvers_[k];
-  const QpStatus status = qp.solve(Hy, gy, Cy_.topLeftCorner(0, nz), ylo_.head(0), Cy_.topLeftCorner(rows, nz),
-                                   ylo_.head(rows), yup_.head(rows), none, none);
+  const auto C = Cy_.topLeftCorner(rows, nq);
+  const QpStatus status =
+      has_box_ ? qp.solve(Hy, gy, Cy_.topLeftCorner(0, nq), ylo_.head(0), C, ylo_.head(rows), yup_.head(rows),
+                          blo_.head(nq), bup_.head(nq))
+               : qp.solve(Hy, gy, Cy_.topLeftCorner(0, nq), ylo_.head(0), C, ylo_.head(rows), yup_.head(rows), none,
+                          none);
   if (status != QpStatus::kOptimal) return status;
-  level_x_[k] = xp;
-  level_x_[k].noalias() += Z * qp.x();
+  const auto y = qp.x();
+  Eigen::VectorXd& x = level_x_[k];
+  x = xp;
+  if (nzd > 0) {
+    xd.noalias() = Zd * y.head(nzd);
+    for (int b = 0; b < nd; ++b) x[dense_[b]] += xd[b];
+  }
+  for (int i = 0; i < nt; ++i) x[touched_[i]] += y[nzd + i];
+  // The touched free variables join the dense ones for the levels below: Zd <- [Zd 0; 0 I].
+  if (nt > 0 && k + 1 < numLevels()) {
+    Eigen::MatrixXd& Z = Z_[cur_];
+    Z.block(0, nzd, nd, nt).setZero();
+    Z.block(nd, 0, nt, nzd).setZero();
+    Z.block(nd, nzd, nt, nt).setIdentity();
+    for (int i = 0; i < nt; ++i) dense_[nd + i] = touched_[i];
+    n_dense_ += nt;
+    nzd_ += nt;
+  }
   return QpStatus::kOptimal;
 }
 

@@ -16,10 +16,14 @@
 // (the constraint rows times Z and the box bounds as rows Z), which is much smaller than the full problem
 // and makes redundant rows of the levels above harmless (they do not increase the rank).
 //
-// Level 0 leaves out the columns that none of its rows and no constraint row touches (e.g. the arms and the
-// wheels' spin when the first level holds the feet): their only cost is eps x_j^2, so x_j = 0 (clipped to the
-// box), and the first QP and the null space of its rows are computed on the other columns only. Exact, and
-// about 3x cheaper for a 45-variable robot whose first level involves ~20 of them.
+// Variables that no row touches stay out of the QPs. Level 0 leaves out the columns that none of its rows and no
+// constraint row touches (e.g. the arms and the wheels' spin when the first level holds the feet): their only
+// cost is eps x_j^2, so x_j = 0 (clipped to the box). They stay "free" (a unit column of Z, no QP variable)
+// through the levels below until a level's rows first touch them; that level adds them to its QP as plain
+// variables bounded by their box, and from then on they join the "dense" part of Z. So Z is kept as Zd (its
+// rows on the dense variables) plus unit columns, and every product, null space and QP row is formed on the
+// dense variables only. Exact, and for CENTAURO's angular-momentum stack (feet / pelvis / momentum + posture)
+// the pelvis level is an 11-variable QP instead of a 33-variable one.
 //
 // Lifecycle: configure(stack, n) checks the stack and allocates everything; then every tick
 //   update()  -> each distinct task / constraint recomputes its A, b / bounds (once, even if shared)
@@ -85,12 +89,17 @@ class HqpSolver {
   std::vector<QpSolver> solvers_;
   std::vector<Eigen::VectorXd> level_x_;
   Eigen::MatrixXd H_, E_, As_, WAs_, Wsel_, C_;
-  Eigen::VectorXd g_, b0_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
-  // null-space reduction (levels >= 1)
+  Eigen::VectorXd g_, bE_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
+  // null-space reduction (levels >= 1): x = x_{k-1}* + Z y, Z = Zd (Z_[cur_], n_dense_ x nzd_) on the dense
+  // variables and unit columns on the free ones (no row above touches them), so nz_ = nzd_ + n_free_
   NullSpace null_space_;
-  Eigen::MatrixXd Z_[2], B_, HZ_, Hy_, Cy_;
-  int cur_ = 0, nz_ = 0;
-  Eigen::VectorXd gy_, ylo_, yup_, tmp_;
+  Eigen::MatrixXd Z_[2], B_, HZ_, Hy_, Cy_, Ad_, Cd_;
+  int cur_ = 0, nz_ = 0, nzd_ = 0;
+  Eigen::VectorXd gy_, ylo_, yup_, tmp_, xd_, blo_, bup_;
+  std::vector<int> dense_;    // the variable of Zd's row i (n_dense_ of them)
+  std::vector<int> free_;     // the free variables (n_free_)
+  std::vector<int> touched_;  // the free variables the current level touches (n_touched_)
+  int n_dense_ = 0, n_free_ = 0, n_touched_ = 0;
   std::vector<int> level_rank_;
   std::vector<int> used_;  // level 0: the columns touched by its rows or by a constraint row (n_used_ of them)
   int n_used_ = 0;
