@@ -20,6 +20,7 @@
 
 #include "cli/command.hpp"
 #include "common/error.hpp"
+#include "common/stats.hpp"
 #include "controller/whole_body_controller.hpp"
 #include "planner/jump_problem.hpp"
 #include "sim/compare_runner.hpp"
@@ -39,12 +40,6 @@ struct BenchArgs {
   std::vector<std::string> jumps = {"squat-jump", "half-squat-jump"};
   std::vector<std::string> modes = {"none", "raibert", "angmom", "ocp"};
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
   std::vector<double> wall, cpu, setup;
@@ -76,12 +71,6 @@ nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
   j["ms_per_iteration"] = iterations > 0 ? 1e3 * median(cpu) / iterations : 0.0;
   j["repeat"] = repeat;
   return j;
-}
-
-double percentile(std::vector<double> v, double p) {
-  std::sort(v.begin(), v.end());
-  const std::size_t i = static_cast<std::size_t>(std::min<double>(v.size() - 1, std::ceil(p * v.size()) - 1));
-  return v[i];
 }
 
 // Times every tick() (and the HQP part of it) of the wrapped controller into preallocated buffers.

@@ -43,6 +43,8 @@ nlohmann::json toJson(const sim::RunSummary& s, const std::string& scenario) {
   j["max_torque_ratio"] = s.max_torque_ratio;
   j["real_time_factor"] = s.real_time_factor;
   j["wall_time_s"] = s.wall_time_s;
+  j["period_time_us_median"] = s.period_time_us_median;
+  j["tick_time_us_median"] = s.tick_time_us_median;
   j["control_periods"] = s.control_periods;
   j["physics_steps"] = s.physics_steps;
   j["video_frames"] = s.video_frames;

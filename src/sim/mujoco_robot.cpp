@@ -1,6 +1,7 @@
 #include "sim/mujoco_robot.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -217,7 +218,9 @@ void MujocoRobot::controlPeriod(Controller& controller, RobotState& state, Joint
   mj_step1(m_, d_);  // positions/velocities and their sensors at this instant
   sampleMeasurement();
   read(state);
+  const auto t0 = std::chrono::steady_clock::now();
   controller.tick(state, command);
+  last_tick_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write(command);
   applyImpedance();
   // The sensors of mj_step2 (the accelerometer: a full post-constraint RNE pass) are read only by the next

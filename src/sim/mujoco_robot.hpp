@@ -82,6 +82,8 @@ class MujocoRobot final : public RobotInterface {
   void controlPeriod(Controller& controller, RobotState& state, JointCommand& command);
   /// One physics step with the current command (impedance law + mj_step). Measurements are not sampled.
   void physicsStep();
+  /// [s] wall time of controller.tick() in the last controlPeriod().
+  double lastTickSeconds() const { return last_tick_s_; }
 
   // ---- description ----
   const SimSettings& settings() const { return settings_; }
@@ -124,6 +126,7 @@ class MujocoRobot final : public RobotInterface {
   std::vector<int> qpos_adr_, dof_adr_;
   Eigen::VectorXd gear_, tau_max_, q_lo_, q_hi_;
   int base_qpos_ = -1, base_dof_ = -1;  // free joint (-1 if fixed base)
+  double last_tick_s_ = 0.0;
   int key_ = -1;
   int sensor_quat_ = -1, sensor_gyro_ = -1, sensor_acc_ = -1;
   std::vector<int> contact_body_ids_;

@@ -7,6 +7,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/stats.hpp"
 #include "sim/png_writer.hpp"
 #include "sim/renderer.hpp"
 #include "sim/sim_log.hpp"
@@ -74,6 +75,9 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
   const double fall_tilt = config.outcome.fall_tilt_deg / kRadToDeg;
   const double fall_extra = 1.0;  // [s] keep simulating after a fall (for the video), then stop
   double wall = 0.0;
+  std::vector<double> period_s, tick_s;  // per control period, for the medians
+  period_s.reserve(static_cast<std::size_t>(periods));
+  tick_s.reserve(static_cast<std::size_t>(periods));
   long k = 0;
   for (; k < periods; ++k) {
     const double t = robot.time();
@@ -113,7 +117,10 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
     if (log_now) log->appendTruth(robot);
     const auto w0 = std::chrono::steady_clock::now();
     robot.controlPeriod(controller, state, command);
-    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    const double period = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    wall += period;
+    period_s.push_back(period);
+    tick_s.push_back(robot.lastTickSeconds());
     if (log_now) log->appendLoop(robot, state, command);
     if (observer) observer->observe(robot, state, command);
   }
@@ -123,6 +130,8 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
   sum.final_pelvis_height_m = robot.basePosition().z();
   sum.wall_time_s = wall;
   sum.real_time_factor = wall > 0.0 ? sum.duration_s / wall : 0.0;
+  sum.period_time_us_median = 1e6 * median(period_s);
+  sum.tick_time_us_median = 1e6 * median(tick_s);
   if (observer) {
     sum.extra = observer->summary();
     const std::string o = observer->outcome();

@@ -33,6 +33,8 @@ struct RunSummary {
   double max_torque_ratio = 0.0;         ///< [-] max |applied torque| / effort limit (1 = saturated)
   double wall_time_s = 0.0;              ///< [s] wall time of the loop (physics + impedance + controller)
   double real_time_factor = 0.0;         ///< simulated time / wall_time_s
+  double period_time_us_median = 0.0;    ///< [us] median wall time of a control period (physics + controller)
+  double tick_time_us_median = 0.0;      ///< [us] median wall time of the controller's tick() alone
   long control_periods = 0;
   long physics_steps = 0;
   int video_frames = 0;

@@ -62,4 +62,11 @@ TEST(SimulateJumpCli, JsonSummaryCarriesTheJumpFields) {
     EXPECT_TRUE(j.contains(key)) << key << " missing in " << last;
   }
   EXPECT_EQ(j["outcome"], "no_wall_contact");  // 0.3 s: still settling, the rear wheels never left the ground
+  // Timing: the controller's tick is a part of the control period, and the medians agree with the mean speed
+  // within the spread of a shared machine (the real-time factor is 1 ms over the mean period).
+  const double period_us = j.at("period_time_us_median"), tick_us = j.at("tick_time_us_median");
+  EXPECT_GT(tick_us, 0.0);
+  EXPECT_LT(tick_us, period_us);
+  const double mean_period_us = 1e3 / j.at("real_time_factor").get<double>();
+  EXPECT_LT(period_us, 1.5 * mean_period_us);
 }
