@@ -38,7 +38,21 @@ void BaseEstimator::reset(const Eigen::Vector3d& w_p_base, const Eigen::Vector3d
 }
 
 void BaseEstimator::update(const RobotState& state, const bool stance[kWheels]) noexcept {
-  RobotModel& model = *model_;
+  // In stance: wheel poses, velocities and Jacobians; in flight also the CoM velocity (from the momentum).
+  estimate(state, stance, *model_, RobotModel::Detail::kKinematics, RobotModel::Detail::kMomentum);
+}
+
+void BaseEstimator::update(const RobotState& state, const bool stance[kWheels], RobotModel& model,
+                           RobotModel::Detail detail) noexcept {
+  using Detail = RobotModel::Detail;
+  const bool dynamics = detail == Detail::kFull || detail == Detail::kDynamics;
+  estimate(state, stance, model, detail, dynamics ? Detail::kFull : Detail::kMomentum);
+  // the model was updated at the prediction q_tmp_, v_tmp_: move it to the estimate
+  model.shiftBase(q_.head<3>() - q_tmp_.head<3>(), v_.head<3>() - v_tmp_.head<3>());
+}
+
+void BaseEstimator::estimate(const RobotState& state, const bool stance[kWheels], RobotModel& model,
+                             RobotModel::Detail stance_detail, RobotModel::Detail flight_detail) noexcept {
   const int n = model.numJoints();
   const double r = params_.wheel_radius;
 
@@ -69,8 +83,7 @@ void BaseEstimator::update(const RobotState& state, const bool stance[kWheels]) 
   v_tmp_.tail(n) = state.qd;
   int n_stance = 0;
   for (int k = 0; k < kWheels; ++k) n_stance += stance[k] ? 1 : 0;
-  // In stance: wheel poses, velocities and Jacobians; in flight also the CoM velocity (from the momentum).
-  model.update(q_tmp_, v_tmp_, n_stance > 0 ? RobotModel::Detail::kKinematics : RobotModel::Detail::kMomentum);
+  model.update(q_tmp_, v_tmp_, n_stance > 0 ? stance_detail : flight_detail);
 
   Eigen::Vector3d p_new = p_prev, v_new = v_prev;
   if (n_stance > 0) {

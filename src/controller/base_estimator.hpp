@@ -51,6 +51,12 @@ class BaseEstimator {
   void reset(const Eigen::Vector3d& w_p_base, const Eigen::Vector3d& w_v_base = Eigen::Vector3d::Zero());
   /// One estimation step with the measurement and the stance flags (wheel k-1 in stance). No allocation.
   void update(const RobotState& state, const bool stance[kWheels]) noexcept;
+  /// The same estimate on the caller's model (same MJCF) instead of the private one, leaving that model
+  /// update()d at the estimate q(), v() with at least `detail` (plus the momentum data in flight): the model is
+  /// updated once, at the prediction (previous position and linear velocity, measured orientation and joints),
+  /// and shifted to the estimate (RobotModel::shiftBase), which saves the caller a second update. No allocation.
+  void update(const RobotState& state, const bool stance[kWheels], RobotModel& model,
+              RobotModel::Detail detail) noexcept;
 
   /// Ground-contact point of a wheel on flat horizontal ground: the lowest point of the rim, given the
   /// non-spinning wheel-centre frame (site wheel_centre_k, z = wheel axis) and the radius. (W)
@@ -69,6 +75,9 @@ class BaseEstimator {
   bool initialized() const { return initialized_; }
 
  private:
+  void estimate(const RobotState& state, const bool stance[kWheels], RobotModel& model,
+                RobotModel::Detail stance_detail, RobotModel::Detail flight_detail) noexcept;
+
   std::unique_ptr<RobotModel> model_;
   BaseEstimatorParams params_;
   int f_wheel_[kWheels] = {-1, -1, -1, -1};

@@ -213,13 +213,13 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
   // 2-3. estimate, measured model, contact detection
   bool stance[4];
   for (int k = 0; k < 4; ++k) stance[k] = contacts_.stance[k];
-  estimator_.update(state, stance);
+  // the estimate, and the measured model at it: M, bias forces, Jacobians
+  estimator_.update(state, stance, *model_meas_, RobotModel::Detail::kDynamics);
   if (!estimator_.q().allFinite() || !estimator_.v().allFinite()) {
     ++counters_.invalid_inputs;
     enterSafe(WholeBodyStatus::kSafeInvalidInput, command);
     return;
   }
-  model_meas_->update(estimator_.q(), estimator_.v(), RobotModel::Detail::kDynamics);  // M, bias, Jacobians
   if (params_.use_contact_detector && detector_.update(*model_meas_, state.tau, params_.dt)) {
     contacts_.stance = detector_.inContact();
   } else if (!params_.use_contact_detector) {

@@ -3,8 +3,9 @@
 //
 // Every tick (period dt):
 //   1. input check: any NaN/Inf in the RobotState -> safe mode (below);
-//   2. BaseEstimator::update(state, stance of the previous tick's contact detector) -> q, v (RobotModel layout);
-//   3. the "measured" RobotModel at (q, v); ContactDetector::update (momentum observer) -> stance set;
+//   2. BaseEstimator::update(state, stance of the previous tick's contact detector) -> q, v (RobotModel layout),
+//      on the "measured" RobotModel, which it leaves at (q, v) (one model update, shifted to the estimate);
+//   3. ContactDetector::update on the measured model (momentum observer) -> stance set;
 //   4. the "IK" RobotModel at [estimated base pose, q_ref joints], [estimated base twist, qd_ref]: the IK runs
 //      on its own integrated joint reference (open-loop IK, it never fights the impedance tracking error);
 //   5. HQP (the YAML stack, decision variable x = v: nv = 6 + n) update() + solve(x);

@@ -61,6 +61,7 @@ struct RobotModel::Impl {
   Eigen::VectorXd b, g;
   Eigen::Matrix<double, 6, Eigen::Dynamic> cacc;  // per body bias spatial acceleration about O, [ang; lin]
   Vec6 h = Vec6::Zero(), hbias = Vec6::Zero();
+  bool has_momentum = false, has_bias_acc = false;  // what the last update() computed beyond kinematics
   // query scratch (queries are logically const)
   RowMatrixXd jacp, jacr;
 
@@ -97,6 +98,8 @@ struct RobotModel::Impl {
     r.tail<3>() = alpha;
     return r;
   }
+  // Per body bias spatial accelerations (vdot = 0) from cdof_dot, and the centroidal momentum bias hbias.
+  void biasAccelerations();
   void checkFrame(int frame) const {
     (void)frame;
     eigen_assert(frame >= 0 && frame < m->nbody + m->nsite);
@@ -222,6 +225,8 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
   const bool full = detail == Detail::kFull;
   const bool momentum = full || detail == Detail::kMomentum;
   const bool dynamics = full || detail == Detail::kDynamics;
+  I.has_momentum = momentum;
+  I.has_bias_acc = false;
   mj_kinematics(m, d);
   mj_comPos(m, d);
   if (momentum || dynamics) mj_crb(m, d);  // composite inertias: the CMM and the mass matrix qM
@@ -246,23 +251,28 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
   I.h.noalias() = I.A * I.v;
   if (!full) return;
 
+  I.biasAccelerations();
+}
+
+void RobotModel::Impl::biasAccelerations() {
+  has_bias_acc = true;
   // Bias spatial accelerations (vdot = 0, no gravity), root to leaves; body ids are topologically sorted.
-  I.cacc.col(0).setZero();
+  cacc.col(0).setZero();
   for (int bd = 1; bd < m->nbody; ++bd) {
-    I.cacc.col(bd) = I.cacc.col(m->body_parentid[bd]);
+    cacc.col(bd) = cacc.col(m->body_parentid[bd]);
     const int a0 = m->body_dofadr[bd];
     for (int j = 0; j < m->body_dofnum[bd]; ++j)
-      I.cacc.col(bd) += Eigen::Map<const Vec6>(d->cdof_dot + 6 * (a0 + j)) * d->qvel[a0 + j];
+      cacc.col(bd) += Eigen::Map<const Vec6>(d->cdof_dot + 6 * (a0 + j)) * d->qvel[a0 + j];
   }
   // Centroidal momentum bias: sum over the tree of d/dt(I v) = I a + v x* (I v), about the (fixed) point O.
   Vec6 f = Vec6::Zero();
-  const int root = m->body_rootid[I.base_body];
+  const int root = m->body_rootid[base_body];
   for (int bd = 1; bd < m->nbody; ++bd) {
     if (m->body_rootid[bd] != root) continue;
     const double* in = d->cinert + 10 * bd;
     const double* cv = d->cvel + 6 * bd;
     double ia[6], iv[6];
-    mulInertVec(ia, in, I.cacc.col(bd).data());
+    mulInertVec(ia, in, cacc.col(bd).data());
     mulInertVec(iv, in, cv);
     const Vec3C w(cv), vl(cv + 3), n(iv), l(iv + 3);
     const Eigen::Vector3d ang = w.cross(n) + vl.cross(l);
@@ -272,8 +282,49 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
       f[3 + r] += ia[3 + r] + lin[r];
     }
   }
-  I.hbias.head<3>() = f.tail<3>();
-  I.hbias.tail<3>() = f.head<3>();
+  hbias.head<3>() = f.tail<3>();
+  hbias.tail<3>() = f.head<3>();
+}
+
+void RobotModel::shiftBase(const Eigen::Vector3d& dp, const Eigen::Vector3d& dv) noexcept {
+  // A rigid translation of the whole tree by dp and a uniform velocity dv added to every body: world positions
+  // move by dp, linear velocities (cvel, about the moving tree CoM) by dv; orientations, the com-based
+  // inertias and motion subspaces (cinert, cdof, crb), the mass matrix, the centroidal momentum matrix and the
+  // bias forces (Galilean invariance: C(q, v) v does not change with a uniform velocity) do not change.
+  Impl& I = *impl_;
+  const mjModel* m = I.m;
+  mjData* d = I.d;
+  const int root = m->body_rootid[I.base_body];
+  auto add3 = [](double* x, const Eigen::Vector3d& a) {
+    x[0] += a[0];
+    x[1] += a[1];
+    x[2] += a[2];
+  };
+  add3(d->qpos, dp);  // the free joint comes first in qpos and qvel (checked at construction)
+  add3(d->qvel, dv);
+  I.q.head<3>() += dp;
+  I.v.head<3>() += dv;
+  for (int bd = 1; bd < m->nbody; ++bd) {
+    if (m->body_rootid[bd] != root) continue;
+    add3(d->xpos + 3 * bd, dp);
+    add3(d->xipos + 3 * bd, dp);
+    add3(d->subtree_com + 3 * bd, dp);
+    add3(d->cvel + 6 * bd + 3, dv);
+  }
+  for (int j = 0; j < m->njnt; ++j)
+    if (m->body_rootid[m->jnt_bodyid[j]] == root) add3(d->xanchor + 3 * j, dp);
+  for (int g = 0; g < m->ngeom; ++g)
+    if (m->body_rootid[m->geom_bodyid[g]] == root) add3(d->geom_xpos + 3 * g, dp);
+  for (int s = 0; s < m->nsite; ++s)
+    if (m->body_rootid[m->site_bodyid[s]] == root) add3(d->site_xpos + 3 * s, dp);
+  // cdof_dot = cvel x cdof (motion cross product): its linear part gains dv x (angular part of cdof).
+  for (int j = 0; j < m->nv; ++j) {
+    if (m->body_rootid[m->dof_bodyid[j]] != root) continue;
+    const Vec3C w(d->cdof + 6 * j);
+    add3(d->cdof_dot + 6 * j + 3, dv.cross(w));
+  }
+  if (I.has_momentum) I.h.noalias() = I.A * I.v;
+  if (I.has_bias_acc) I.biasAccelerations();
 }
 
 Eigen::Isometry3d RobotModel::framePose(int frame) const {

@@ -7,6 +7,7 @@
 #include "support/allocation_counter.hpp"
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <new>
 #include <string>
@@ -16,6 +17,7 @@
 using centaur::BaseEstimator;
 using centaur::RobotModel;
 using centaur::RobotState;
+using centaur::RowMatrixXd;
 using Eigen::Quaterniond;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
@@ -164,6 +166,60 @@ TEST_F(BaseEstimatorTest, UpdateDoesNotAllocate) {
   for (int k = 1; k < 10; ++k) {
     s.t = 0.001 * k;
     est.update(s, k < 4 ? all : (k < 7 ? none : some));
+  }
+  EXPECT_EQ(centaur_test::heapAllocations() - before, 0);
+}
+
+TEST_F(BaseEstimatorTest, OnTheCallersModelTheEstimateIsTheSameAndTheModelEndsAtIt) {
+  // The controller lets the estimator update its measured model (once, at the prediction) and shift it to the
+  // estimate. Through stance with rolling wheels and moving joints, flight and touchdown: the estimate equals the
+  // private-model one, and the caller's model equals a fresh update at (q(), v()).
+  BaseEstimator own;
+  own.init(kModel);
+  RobotModel caller(kModel), fresh(kModel);
+  const int nv = model.nv();
+  RowMatrixXd M1(nv, nv), M2(nv, nv), J1(6, nv), J2(6, nv);
+  VectorXd b1(nv), b2(nv);
+  own.reset(Vector3d(0.0, 0.0, kHomeZ), Vector3d(0.3, 0.0, 0.0));
+  est.reset(Vector3d(0.0, 0.0, kHomeZ), Vector3d(0.3, 0.0, 0.0));
+  truth.quat = Quaterniond(Eigen::AngleAxisd(0.1, Vector3d::UnitY()));
+  truth.omega = Vector3d(0.05, -0.2, 0.1);
+  const double dt = 0.001;
+  const int wheel = model.frameId("wheel_centre_3");
+  for (int k = 0; k < 300; ++k) {
+    const double t = dt * k;
+    for (int i = 0; i < truth.qj.size(); ++i) truth.qdj[i] = 0.3 * std::sin(0.7 * i + 20.0 * t);
+    truth.qj += dt * truth.qdj;
+    const bool* stance = k < 100 ? all : (k < 200 ? none : all);  // stance, flight, touchdown
+    own.update(measure(truth, t), stance);
+    est.update(measure(truth, t), stance, caller, RobotModel::Detail::kDynamics);
+    ASSERT_LT((est.q() - own.q()).cwiseAbs().maxCoeff(), 1e-12) << k;
+    ASSERT_LT((est.v() - own.v()).cwiseAbs().maxCoeff(), 1e-12) << k;
+    fresh.update(est.q(), est.v(), RobotModel::Detail::kDynamics);
+    EXPECT_LT((caller.framePose(wheel).matrix() - fresh.framePose(wheel).matrix()).cwiseAbs().maxCoeff(), 1e-12) << k;
+    EXPECT_LT((caller.frameVelocity(wheel) - fresh.frameVelocity(wheel)).cwiseAbs().maxCoeff(), 1e-11) << k;
+    caller.frameJacobian(wheel, J1);
+    fresh.frameJacobian(wheel, J2);
+    EXPECT_LT((J1 - J2).cwiseAbs().maxCoeff(), 1e-12) << k;
+    caller.massMatrix(M1);
+    fresh.massMatrix(M2);
+    EXPECT_LT((M1 - M2).cwiseAbs().maxCoeff(), 1e-11) << k;
+    caller.biasForces(b1);
+    fresh.biasForces(b2);
+    EXPECT_LT((b1 - b2).cwiseAbs().maxCoeff(), 1e-10) << k;
+  }
+  EXPECT_GT((est.q().head<3>() - Vector3d(0.0, 0.0, kHomeZ)).norm(), 0.01);  // it did move: the shift is exercised
+}
+
+TEST_F(BaseEstimatorTest, UpdateOnTheCallersModelDoesNotAllocate) {
+  RobotModel caller(kModel);
+  RobotState s = measure(truth, 0.0);
+  est.update(s, all, caller, RobotModel::Detail::kDynamics);
+  const long before = centaur_test::heapAllocations();
+  const bool some[4] = {true, false, true, false};
+  for (int k = 1; k < 10; ++k) {
+    s.t = 0.001 * k;
+    est.update(s, k < 4 ? all : (k < 7 ? none : some), caller, RobotModel::Detail::kDynamics);
   }
   EXPECT_EQ(centaur_test::heapAllocations() - before, 0);
 }
