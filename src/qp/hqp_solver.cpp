@@ -84,6 +84,9 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   blo_.setZero(n);
   bup_.setZero(n);
   dense_.assign(n, 0);
+  nz_idx_.assign(n, 0);
+  nz_val_.setZero(n);
+  w_.setZero(max_term_rows);
   free_.assign(n, 0);
   touched_.assign(n, 0);
   const int m_rows = m_in_ + (has_box_ ? n : 0);  // reduced levels: constraint rows and box rows
@@ -100,7 +103,7 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   gy_.setZero(n);
   ylo_.setZero(std::max(m_rows, 1));
   yup_.setZero(std::max(m_rows, 1));
-  tmp_.setZero(std::max(m_in_, n));
+  tmp_.setZero(std::max(m_rows, 1));
   used_.assign(n, 0);
   n_used_ = n;
   failed_level_ = -1;
@@ -355,16 +358,20 @@ QpStatus HqpSolver::solveReduced(int k) {
     const auto A = E_.middleRows(row, m);
     auto Ad = Ad_.topLeftCorner(m, nd);
     for (int b = 0; b < nd; ++b) Ad.col(b) = A.col(dense_[b]);
-    auto AZ = HZ_.topLeftCorner(m, nq);
-    productNoAlloc(AZ.leftCols(nzd), Ad, Zd, false);
-    for (int i = 0; i < nt; ++i) AZ.col(nzd + i) = A.col(touched_[i]);
     auto res = res_.head(m);
     res.noalias() = A * xp;
     res -= bE_.segment(row, m);
-    auto WAZ = WAs_.topLeftCorner(m, nq);
-    weigh(t, AZ, WAZ);
-    productNoAlloc(Hy, AZ.transpose(), WAZ, true);
-    gy.noalias() += WAZ.transpose() * res;
+    if (t.task->diagonalWeight()) {
+      addDiagonalTerm(t, A, Ad, res, nzd, nt);
+    } else {
+      auto AZ = HZ_.topLeftCorner(m, nq);
+      productNoAlloc(AZ.leftCols(nzd), Ad, Zd, false);
+      for (int i = 0; i < nt; ++i) AZ.col(nzd + i) = A.col(touched_[i]);
+      auto WAZ = WAs_.topLeftCorner(m, nq);
+      weigh(t, AZ, WAZ);
+      productNoAlloc(Hy, AZ.transpose(), WAZ, true);
+      gy.noalias() += WAZ.transpose() * res;
+    }
     row += m;
   }
   Hy.diagonal().array() += stack_.regularisation;
@@ -384,15 +391,19 @@ QpStatus HqpSolver::solveReduced(int k) {
     rows = m_in_;
   }
   if (has_box_) {
+    int nb = 0;  // the bounded dense variables (an unbounded one, e.g. the floating base, has no row)
     for (int b = 0; b < nd; ++b) {
       const int j = dense_[b];
-      if (x_lo_[j] == -kInf && x_up_[j] == kInf) continue;  // an unbounded variable (the floating base): no row
-      Cy_.row(rows).head(nzd) = Zd.row(b);
-      Cy_.row(rows).segment(nzd, nt).setZero();
+      if (x_lo_[j] == -kInf && x_up_[j] == kInf) continue;
+      nz_idx_[nb++] = b;
       ylo_[rows] = x_lo_[j] - xp[j];
       yup_[rows] = x_up_[j] - xp[j];
       ++rows;
     }
+    auto Cb = Cy_.block(rows - nb, 0, nb, nq);  // their rows of Zd, column by column (contiguous)
+    for (int c = 0; c < nzd; ++c)
+      for (int i = 0; i < nb; ++i) Cb(i, c) = Zd(nz_idx_[i], c);
+    Cb.rightCols(nt).setZero();
     blo_.head(nzd).setConstant(-kInf);
     bup_.head(nzd).setConstant(kInf);
     for (int i = 0; i < nt; ++i) {
@@ -403,9 +414,12 @@ QpStatus HqpSolver::solveReduced(int k) {
   }
   // A row whose projection on the null space is negligible is fixed by the levels above (and met by xp):
   // it is dropped, since rounding noise in a near-zero row would read as a large normalised violation.
+  auto row_sq = tmp_.head(rows);  // squared row norms, column by column
+  row_sq.setZero();
+  for (int c = 0; c < nq; ++c) row_sq += Cy_.col(c).head(rows).cwiseAbs2();
   for (int i = 0; i < rows; ++i) {
     const double original = i < m_in_ ? C_.row(i).norm() : 1.0;
-    if (Cy_.row(i).head(nq).norm() <= kNullRowTol * original) {
+    if (std::sqrt(row_sq[i]) <= kNullRowTol * original) {
       Cy_.row(i).head(nq).setZero();
       ylo_[i] = -kInf;
       yup_[i] = kInf;
@@ -439,6 +453,49 @@ QpStatus HqpSolver::solveReduced(int k) {
     nzd_ += nt;
   }
   return QpStatus::kOptimal;
+}
+
+void HqpSolver::addDiagonalTerm(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                const Eigen::Ref<const Eigen::MatrixXd>& Ad, const Eigen::Ref<const Eigen::VectorXd>& res,
+                                int nzd, int nt) {
+  // A term with a diagonal weight w_r: Hy += (A Z)' diag(w) (A Z), gy += (A Z)' diag(w) res, with A Z = [Ad Zd, A_T].
+  // The Zd block is dense; the touched free columns A_T are mostly empty (a posture row has one entry), so their
+  // blocks are accumulated row by row over each row's nonzeros instead of as a dense product.
+  const Task& task = *t.task;
+  const int m = t.size();
+  const int nd = static_cast<int>(Ad.cols());
+  auto Hy = Hy_.topLeftCorner(nzd + nt, nzd + nt);
+  auto gy = gy_.head(nzd + nt);
+  auto w = w_.head(m);
+  for (int r = 0; r < m; ++r) w[r] = t.scale * task.weight()(t.taskRow(r), t.taskRow(r));
+  auto AZd = HZ_.topLeftCorner(m, nzd);
+  auto WAZd = WAs_.topLeftCorner(m, nzd);
+  if (nzd > 0) {
+    productNoAlloc(AZd, Ad, Z_[cur_].topLeftCorner(nd, nzd), false);
+    WAZd = w.asDiagonal() * AZd;
+    productNoAlloc(Hy.topLeftCorner(nzd, nzd), AZd.transpose(), WAZd, true);
+    gy.head(nzd).noalias() += WAZd.transpose() * res;
+  }
+  for (int r = 0; r < m; ++r) {
+    int nnz = 0;
+    for (int i = 0; i < nt; ++i) {
+      const double a = A(r, touched_[i]);
+      if (a != 0.0) {
+        nz_idx_[nnz] = i;
+        nz_val_[nnz++] = a;
+      }
+    }
+    for (int p = 0; p < nnz; ++p) {
+      const int ci = nzd + nz_idx_[p];
+      const double wa = w[r] * nz_val_[p];
+      gy[ci] += wa * res[r];
+      if (nzd > 0) {
+        Hy.col(ci).head(nzd) += nz_val_[p] * WAZd.row(r).transpose();
+        Hy.row(ci).head(nzd) += nz_val_[p] * WAZd.row(r);
+      }
+      for (int q = 0; q < nnz; ++q) Hy(ci, nzd + nz_idx_[q]) += wa * nz_val_[q];
+    }
+  }
 }
 
 double HqpSolver::levelCost(int k, const Eigen::Ref<const Eigen::VectorXd>& x) {

@@ -78,6 +78,11 @@ class HqpSolver {
   void updateNullSpace(int k);    // Z_k from Z_{k-1} and the rows of level k-1
   void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
   void weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M, Eigen::Ref<Eigen::MatrixXd> WM);
+  // level k >= 1: a diagonally weighted term's share of Hy, gy (its rows A, their dense-variable columns Ad,
+  // residuals A x_{k-1}* - lambda b), exploiting the sparsity of its touched-free columns
+  void addDiagonalTerm(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& A,
+                       const Eigen::Ref<const Eigen::MatrixXd>& Ad, const Eigen::Ref<const Eigen::VectorXd>& res,
+                       int nzd, int nt);
 
   Stack stack_;
   int n_ = 0;
@@ -100,6 +105,8 @@ class HqpSolver {
   std::vector<int> free_;     // the free variables (n_free_)
   std::vector<int> touched_;  // the free variables the current level touches (n_touched_)
   int n_dense_ = 0, n_free_ = 0, n_touched_ = 0;
+  std::vector<int> nz_idx_;  // a row's nonzero touched-free columns and their values (addDiagonalTerm)
+  Eigen::VectorXd nz_val_, w_;
   std::vector<int> level_rank_;
   std::vector<int> used_;  // level 0: the columns touched by its rows or by a constraint row (n_used_ of them)
   int n_used_ = 0;

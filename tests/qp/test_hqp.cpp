@@ -352,6 +352,12 @@ TEST(Hqp, LevelsOnTheColumnsTheyTouchEqualTheFullProblem) {
           seen[j] = true;
         }
       }
+      if (trial % 4 == 1 && k >= 1) {  // a full (non-diagonal) SPD weight on some trials: the dense path
+        MatrixXd R = MatrixXd::Random(rows, rows);
+        t->setWeight(MatrixXd(R * R.transpose() + MatrixXd::Identity(rows, rows)));
+      } else if (trial % 4 == 2) {
+        t->setWeight(0.5 + U(rng));  // a diagonal weight other than 1
+      }
       level.push_back(t);
     }
     auto box = std::make_shared<LinearConstraint>("box", n, 1);
