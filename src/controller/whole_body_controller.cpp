@@ -61,7 +61,7 @@ WholeBodyController::WholeBodyController(const std::string& mjcf_path, const Who
   pelvis_ = findTask<PelvisAngularVelocityTask>(stack_, params_.pelvis_task);
   momentum_ = findTask<AngularMomentumTask>(stack_, params_.momentum_task);
   // The IK model computes the centroidal momentum matrix only if a task of the stack needs it.
-  ik_detail_ = RobotModel::Detail::kKinematics;
+  ik_detail_ = RobotModel::Detail::kJacobians;
   for (const auto& named : stack_.tasks) {
     if (std::dynamic_pointer_cast<AngularMomentumTask>(named.second) || std::dynamic_pointer_cast<ComTask>(named.second))
       ik_detail_ = RobotModel::Detail::kMomentum;

@@ -143,7 +143,7 @@ class WholeBodyController final : public Controller {
 
   WholeBodyParams params_;
   std::unique_ptr<RobotModel> model_meas_, model_ik_;
-  RobotModel::Detail ik_detail_ = RobotModel::Detail::kMomentum;  // kKinematics if no CoM/momentum task
+  RobotModel::Detail ik_detail_ = RobotModel::Detail::kMomentum;  // kJacobians if no CoM/momentum task
   BaseEstimator estimator_;
   ContactDetector detector_;
   ForceDistribution force_;

@@ -230,7 +230,8 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
   mj_kinematics(m, d);
   mj_comPos(m, d);
   if (momentum || dynamics) mj_crb(m, d);  // composite inertias: the CMM and the mass matrix qM
-  mj_comVel(m, d);  // frame velocities
+  const bool velocities = full || dynamics || detail == Detail::kKinematics;
+  if (velocities) mj_comVel(m, d);  // frame velocities (cvel, cdof_dot)
   if (dynamics) {
     mj_fullM(m, I.M.data(), d->qM);  // row-major nv x nv, same layout as RowMatrixXd
     mj_rne(m, d, 0, I.b.data());

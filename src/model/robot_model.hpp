@@ -53,16 +53,19 @@ class RobotModel {
   /// How much update() computes.
   enum class Detail {
     kFull,      ///< everything below
-    kMomentum,  ///< kinematics, frame poses, velocities and Jacobians, CoM, centroidal momentum matrix A, h = A v, Jcom,
-                ///< gravity vector g; NOT the mass matrix, the bias forces nor the momentum bias (their
-                ///< queries return the values of the last kFull update). Enough for velocity-level IK and
-                ///< the base estimator, and about half the cost.
+    kMomentum,  ///< kinematics, frame poses and Jacobians, CoM, centroidal momentum matrix A, h = A v (so the CoM
+                ///< velocity), Jcom, gravity vector g; NOT the frame velocities, the mass matrix, the bias forces
+                ///< nor the momentum bias (their queries return the values of the last update that computed
+                ///< them). Enough for a velocity-level IK with a CoM or momentum task and for the base estimator
+                ///< in flight, and about half the cost.
     kDynamics,  ///< kinematics, frame poses, velocities and Jacobians, CoM position, mass matrix and bias forces;
                 ///< NOT the centroidal momentum matrix, Jcom, h, CoM velocity, gravity vector g nor the Jdot v
                 ///< and momentum-bias data (last values of an update that computed them). What force
                 ///< distribution and contact detection use.
-    kKinematics,  ///< kinematics, frame poses, velocities and Jacobians, CoM position only. What a stack
-                  ///< without CoM or momentum task and the base estimator in stance use.
+    kKinematics,  ///< kinematics, frame poses, velocities and Jacobians, CoM position only. What the base
+                  ///< estimator in stance uses.
+    kJacobians,   ///< kinematics, frame poses and Jacobians, CoM position only (no velocities): what a
+                  ///< velocity-level IK without CoM or momentum task uses.
   };
   /// Set q (nq) and v (nv) and compute kinematics, CoM, mass matrix and bias forces. No allocation.
   void update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& v,
