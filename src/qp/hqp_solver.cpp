@@ -288,6 +288,11 @@ void HqpSolver::updateNullSpace(int k) {
 void HqpSolver::rowsOf(const Term& t) {
   const Task& task = *t.task;
   const int m = t.size();
+  if (t.rows.empty()) {  // every row: a block copy, column by column
+    As_.topRows(m) = task.A();
+    bs_.head(m) = task.lambda() * task.b();
+    return;
+  }
   for (int r = 0; r < m; ++r) {
     const int tr = t.taskRow(r);
     As_.row(r) = task.A().row(tr);
