@@ -229,7 +229,17 @@ void RobotModel::update(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen:
   I.has_bias_acc = false;
   mj_kinematics(m, d);
   mj_comPos(m, d);
-  if (momentum || dynamics) mj_crb(m, d);  // composite inertias: the CMM and the mass matrix qM
+  if (dynamics) {
+    mj_crb(m, d);  // composite inertias crb and the mass matrix qM
+  } else if (momentum) {
+    // composite inertias only (the CMM needs no qM): cinert are all about the same point, so a subtree's
+    // composite inertia is the plain sum of its bodies', accumulated leaves to root (what mj_crb does first)
+    mju_copy(d->crb, d->cinert, 10 * m->nbody);
+    for (int bd = m->nbody - 1; bd > 0; --bd) {
+      const int parent = m->body_parentid[bd];
+      if (parent > 0) mju_addTo(d->crb + 10 * parent, d->crb + 10 * bd, 10);
+    }
+  }
   const bool velocities = full || dynamics || detail == Detail::kKinematics;
   if (velocities) mj_comVel(m, d);  // frame velocities (cvel, cdof_dot)
   if (dynamics) {
