@@ -111,12 +111,12 @@ bool ContactDetector::update(const RobotModel& model, const Eigen::Ref<const Eig
     tmp_ = r_ - b_;
     tmp_.tail(n_) += tau;
     I_ += dt * tmp_;
-    I_.noalias() += M_ * v;
+    tmp_.noalias() = M_ * v;  // p_k
+    I_ += tmp_;
     I_.noalias() -= M_prev_ * v;
-    tmp_.noalias() = M_ * v;
     r_ = K * (tmp_ - p0_ - I_);
   }
-  M_prev_ = M_;
+  M_prev_.swap(M_);  // M_ is overwritten by the next update (no copy, no allocation: same size)
 
   for (int k = 0; k < kWheels; ++k) {
     const Eigen::Vector3d w_c = wheelContactPoint(model.framePose(centre_[k]), params_.wheel_radius, normal_[k]);

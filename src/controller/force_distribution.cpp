@@ -102,10 +102,12 @@ ForceDistributionStatus ForceDistribution::compute(const RobotModel& model,
   if (!initialized_ || model.nv() != nv_ || vdot_d.size() != nv_ || !vdot_d.allFinite()) return status_;
 
   // Dynamics terms: Mvb = M vdot_d + b.
-  model.massMatrix(M_);
   model.biasForces(b_);
   Mvb_ = b_;
-  Mvb_.noalias() += M_ * vdot_d;
+  if (!vdot_d.isZero(0.0)) {  // the default vdot_d = 0 needs no mass matrix
+    model.massMatrix(M_);
+    Mvb_.noalias() += M_ * vdot_d;
+  }
   if (!Mvb_.allFinite()) return status_;
 
   // Stance wheels: contact points, Jacobians, variable slots, constraint rows.
