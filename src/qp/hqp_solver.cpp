@@ -85,6 +85,13 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   bup_.setZero(n);
   dense_.assign(n, 0);
   nz_idx_.assign(n, 0);
+  kept_.assign(n, 0);
+  sep_.assign(n, 0);
+  Hc_.setZero(n, n);
+  gc_.setZero(n);
+  blc_.setZero(n);
+  buc_.setZero(n);
+  ysol_.setZero(n);
   nz_val_.setZero(n);
   w_.setZero(max_term_rows);
   free_.assign(n, 0);
@@ -100,6 +107,7 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   Hy_.setZero(n, n);
   HZ_.setZero(max_term_rows, n);
   Cy_.setZero(std::max(m_rows, 1), n);
+  Cc_.setZero(std::max(m_rows, 1), n);
   gy_.setZero(n);
   ylo_.setZero(std::max(m_rows, 1));
   yup_.setZero(std::max(m_rows, 1));
@@ -430,16 +438,63 @@ QpStatus HqpSolver::solveReduced(int k) {
       yup_[i] = kInf;
     }
   }
+  // A touched free variable with no off-diagonal entry of Hy is separable (it has no row either: its box is a
+  // bound of its own, and the constraint and box rows are zero on it): y_i = argmin Hy_ii y^2 / 2 + gy_i y over
+  // that bound, in closed form, e.g. a joint only a posture row touches. The QP keeps the other variables.
+  int nk = 0, n_sep = 0;
+  for (int i = 0; i < nzd; ++i) kept_[nk++] = i;
+  for (int i = 0; i < nt; ++i) {
+    const int c = nzd + i;
+    bool separable = true;
+    for (int r = 0; r < nq && separable; ++r) separable = r == c || Hy(r, c) == 0.0;
+    if (separable) {
+      sep_[n_sep++] = c;
+    } else {
+      kept_[nk++] = c;
+    }
+  }
   const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);
   QpSolver& qp = solvers_[k];
-  const auto C = Cy_.topLeftCorner(rows, nq);
-  const QpStatus status =
-      has_box_ ? qp.solve(Hy, gy, Cy_.topLeftCorner(0, nq), ylo_.head(0), C, ylo_.head(rows), yup_.head(rows),
-                          blo_.head(nq), bup_.head(nq))
-               : qp.solve(Hy, gy, Cy_.topLeftCorner(0, nq), ylo_.head(0), C, ylo_.head(rows), yup_.head(rows), none,
-                          none);
+  auto y = ysol_.head(nq);
+  QpStatus status;
+  if (n_sep == 0) {
+    const auto C = Cy_.topLeftCorner(rows, nq);
+    status = has_box_ ? qp.solve(Hy, gy, Cy_.topLeftCorner(0, nq), ylo_.head(0), C, ylo_.head(rows),
+                                 yup_.head(rows), blo_.head(nq), bup_.head(nq))
+                      : qp.solve(Hy, gy, Cy_.topLeftCorner(0, nq), ylo_.head(0), C, ylo_.head(rows),
+                                 yup_.head(rows), none, none);
+    if (status == QpStatus::kOptimal) y = qp.x();
+  } else {
+    auto Hc = Hc_.topLeftCorner(nk, nk);
+    auto gc = gc_.head(nk);
+    for (int b = 0; b < nk; ++b) {
+      gc[b] = gy[kept_[b]];
+      for (int a = 0; a < nk; ++a) Hc(a, b) = Hy(kept_[a], kept_[b]);
+    }
+    auto Cc = Cc_.topLeftCorner(rows, nk);  // the kept touched columns of the rows are zero
+    Cc.leftCols(nzd) = Cy_.topLeftCorner(rows, nzd);
+    Cc.rightCols(nk - nzd).setZero();
+    if (has_box_) {
+      for (int a = 0; a < nk; ++a) {
+        blc_[a] = blo_[kept_[a]];
+        buc_[a] = bup_[kept_[a]];
+      }
+    }
+    status = has_box_ ? qp.solve(Hc, gc, Cc_.topLeftCorner(0, nk), ylo_.head(0), Cc, ylo_.head(rows),
+                                 yup_.head(rows), blc_.head(nk), buc_.head(nk))
+                      : qp.solve(Hc, gc, Cc_.topLeftCorner(0, nk), ylo_.head(0), Cc, ylo_.head(rows),
+                                 yup_.head(rows), none, none);
+    if (status == QpStatus::kOptimal) {
+      for (int a = 0; a < nk; ++a) y[kept_[a]] = qp.x()[a];
+      for (int s = 0; s < n_sep; ++s) {
+        const int c = sep_[s];
+        double v = -gy[c] / Hy(c, c);
+        if (has_box_) v = std::clamp(v, blo_[c], bup_[c]);
+        y[c] = v;
+      }
+    }
+  }
   if (status != QpStatus::kOptimal) return status;
-  const auto y = qp.x();
   Eigen::VectorXd& x = level_x_[k];
   x = xp;
   if (nzd > 0) {

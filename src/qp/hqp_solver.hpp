@@ -107,6 +107,10 @@ class HqpSolver {
   int n_dense_ = 0, n_free_ = 0, n_touched_ = 0;
   std::vector<int> nz_idx_;  // a row's nonzero touched-free columns and their values (addDiagonalTerm)
   Eigen::VectorXd nz_val_, w_;
+  // separable touched variables (closed form) and the QP of the others, compacted
+  std::vector<int> kept_, sep_;
+  Eigen::MatrixXd Hc_, Cc_;
+  Eigen::VectorXd gc_, blc_, buc_, ysol_;
   std::vector<int> level_rank_;
   std::vector<int> used_;  // level 0: the columns touched by its rows or by a constraint row (n_used_ of them)
   int n_used_ = 0;

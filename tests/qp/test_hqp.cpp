@@ -332,7 +332,8 @@ TEST(Hqp, LevelsOnTheColumnsTheyTouchEqualTheFullProblem) {
   // Every level touches its own random subset of the columns (as a whole-body stack: feet on the legs, then the
   // pelvis, then the arms' momentum, then a posture on everything), so variables stay out of the reduced QPs
   // until a level first touches them. Reference: the same stack plus an always-inactive row touching every
-  // column, which makes every variable dense from level 0 on. Every level's solution and rank must agree.
+  // column, which makes every variable dense from level 0 on. Every level's solution and rank must agree. Some
+  // last levels are a posture (a row per column), whose late-joining variables the solver takes in closed form.
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   int late_touches = 0;
@@ -343,7 +344,12 @@ TEST(Hqp, LevelsOnTheColumnsTheyTouchEqualTheFullProblem) {
     for (int k = 0; k < 4; ++k) {
       const int rows = 1 + static_cast<int>(U(rng) * (k == 3 ? n : 4));
       auto t = randomTask(rng, "level" + std::to_string(k), rows, n);
-      const double keep = k == 3 ? 0.9 : 0.35;
+      if (k == 3 && trial % 3 == 2) {  // a posture: one row per column, each on its own column only
+        MatrixXd P = MatrixXd::Zero(n, n);
+        for (int j = 0; j < n; ++j) P(j, j) = 0.5 + U(rng);
+        t = std::make_shared<LinearTask>("posture", P, VectorXd::Random(n));
+      }
+      const double keep = k == 3 ? (trial % 3 == 2 ? 1.0 : 0.9) : 0.35;
       for (int j = 0; j < n; ++j) {
         if (U(rng) > keep) {
           t->A().col(j).setZero();
@@ -353,8 +359,8 @@ TEST(Hqp, LevelsOnTheColumnsTheyTouchEqualTheFullProblem) {
         }
       }
       if (trial % 4 == 1 && k >= 1) {  // a full (non-diagonal) SPD weight on some trials: the dense path
-        MatrixXd R = MatrixXd::Random(rows, rows);
-        t->setWeight(MatrixXd(R * R.transpose() + MatrixXd::Identity(rows, rows)));
+        MatrixXd R = MatrixXd::Random(t->rows(), t->rows());
+        t->setWeight(MatrixXd(R * R.transpose() + MatrixXd::Identity(t->rows(), t->rows())));
       } else if (trial % 4 == 2) {
         t->setWeight(0.5 + U(rng));  // a diagonal weight other than 1
       }
