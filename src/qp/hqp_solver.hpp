@@ -22,8 +22,10 @@
 // through the levels below until a level's rows first touch them; that level adds them to its QP as plain
 // variables bounded by their box, and from then on they join the "dense" part of Z. So Z is kept as Zd (its
 // rows on the dense variables) plus unit columns, and every product, null space and QP row is formed on the
-// dense variables only. Exact, and for CENTAURO's angular-momentum stack (feet / pelvis / momentum + posture)
-// the pelvis level is an 11-variable QP instead of a 33-variable one.
+// dense variables only. A touched variable that nothing couples (no off-diagonal Hessian entry, no row: e.g. a
+// joint only a posture row touches) is solved in closed form and left out of the QP. Exact, and for CENTAURO's
+// angular-momentum stack (feet / pelvis / momentum + posture) the pelvis level is an 8-variable QP instead of a
+// 33-variable one, the last level an 18-variable QP instead of a 30-variable one.
 //
 // Lifecycle: configure(stack, n) checks the stack and allocates everything; then every tick
 //   update()  -> each distinct task / constraint recomputes its A, b / bounds (once, even if shared)
