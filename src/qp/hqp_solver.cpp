@@ -329,6 +329,36 @@ QpStatus HqpSolver::solveReduced(int k) {
     level_x_[k] = xp;
     return QpStatus::kOptimal;
   }
+  levelRows(k);
+  // The QP in y = [yd; yt]: x = xp + Zd yd on the dense variables, xp + yt on the touched free ones.
+  const int nd = n_dense_, nzd = nzd_, nt = n_touched_;
+  reducedCost(k);
+  const int rows = reducedRows(xp);
+  const QpStatus status = solveReducedQp(k, rows);
+  if (status != QpStatus::kOptimal) return status;
+  const auto y = ysol_.head(nzd + nt);
+  Eigen::VectorXd& x = level_x_[k];
+  x = xp;
+  if (nzd > 0) {
+    auto xd = xd_.head(nd);
+    xd.noalias() = Z_[cur_].topLeftCorner(nd, nzd) * y.head(nzd);
+    for (int b = 0; b < nd; ++b) x[dense_[b]] += xd[b];
+  }
+  for (int i = 0; i < nt; ++i) x[touched_[i]] += y[nzd + i];
+  // The touched free variables join the dense ones for the levels below: Zd <- [Zd 0; 0 I].
+  if (nt > 0 && k + 1 < numLevels()) {
+    Eigen::MatrixXd& Z = Z_[cur_];
+    Z.block(0, nzd, nd, nt).setZero();
+    Z.block(nd, 0, nt, nzd).setZero();
+    Z.block(nd, nzd, nt, nt).setIdentity();
+    for (int i = 0; i < nt; ++i) dense_[nd + i] = touched_[i];
+    n_dense_ += nt;
+    nzd_ += nt;
+  }
+  return QpStatus::kOptimal;
+}
+
+void HqpSolver::levelRows(int k) {
   // This level's rows (into E_, for the next level's null space) and the free variables they touch. The
   // untouched free variables keep their value: their only cost is eps x_j^2 and no row couples them, so they
   // stay where level 0 put them (0 clipped to the box).
@@ -353,11 +383,14 @@ QpStatus HqpSolver::solveReduced(int k) {
     }
   }
   n_free_ = kept;
-  // The QP in y = [yd; yt]: x = xp + Zd yd on the dense variables, xp + yt on the touched free ones.
+}
+
+void HqpSolver::reducedCost(int k) {
+  // Reduced cost of level k, x = xp + Z y:  sum_t scale_t ||A_t Z y + (A_t xp - lambda_t b_t)||^2_W + eps ||xp + Z y||^2
+  //   Hy = sum (A Z)' W (A Z) + eps I,   gy = sum (A Z)' W (A xp - lambda b) + eps Z' xp   (Z'Z = I).
+  const Eigen::VectorXd& xp = level_x_[k - 1];
   const int nd = n_dense_, nzd = nzd_, nt = n_touched_, nq = nzd + nt;
   const auto Zd = Z_[cur_].topLeftCorner(nd, nzd);
-  // Reduced cost: sum_t scale_t ||A_t Z y + (A_t xp - lambda_t b_t)||^2_W + eps ||xp + Z y||^2
-  //   Hy = sum (A Z)' W (A Z) + eps I,   gy = sum (A Z)' W (A xp - lambda b) + eps Z' xp   (Z'Z = I).
   auto Hy = Hy_.topLeftCorner(nq, nq);
   auto gy = gy_.head(nq);
   auto xd = xd_.head(nd);
@@ -365,7 +398,7 @@ QpStatus HqpSolver::solveReduced(int k) {
   Hy.setZero();
   gy.head(nzd).noalias() = stack_.regularisation * (Zd.transpose() * xd);
   for (int i = 0; i < nt; ++i) gy[nzd + i] = stack_.regularisation * xp[touched_[i]];
-  row = first;
+  int row = level_offset_[k];
   for (const Term& t : stack_.levels[k].terms) {
     const int m = t.size();
     const auto A = E_.middleRows(row, m);
@@ -388,6 +421,11 @@ QpStatus HqpSolver::solveReduced(int k) {
     row += m;
   }
   Hy.diagonal().array() += stack_.regularisation;
+}
+
+int HqpSolver::reducedRows(const Eigen::VectorXd& xp) {
+  const int nd = n_dense_, nzd = nzd_, nt = n_touched_, nq = nzd + nt;
+  const auto Zd = Z_[cur_].topLeftCorner(nd, nzd);
   // Rows: c_lo - C xp <= C Z y <= c_up - C xp (C touches dense variables only: they include level 0's used
   // columns); the box of a dense variable j is the row x_lo - xp <= Zd(j, :) yd <= x_up - xp, the box of a
   // touched free one a bound on its own yt.
@@ -438,6 +476,13 @@ QpStatus HqpSolver::solveReduced(int k) {
       yup_[i] = kInf;
     }
   }
+  return rows;
+}
+
+QpStatus HqpSolver::solveReducedQp(int k, int rows) {
+  const int nzd = nzd_, nt = n_touched_, nq = nzd + nt;
+  const auto Hy = Hy_.topLeftCorner(nq, nq);
+  const auto gy = gy_.head(nq);
   // A touched free variable with no off-diagonal entry of Hy is separable (it has no row either: its box is a
   // bound of its own, and the constraint and box rows are zero on it): y_i = argmin Hy_ii y^2 / 2 + gy_i y over
   // that bound, in closed form, e.g. a joint only a posture row touches. The QP keeps the other variables.
@@ -494,25 +539,7 @@ QpStatus HqpSolver::solveReduced(int k) {
       }
     }
   }
-  if (status != QpStatus::kOptimal) return status;
-  Eigen::VectorXd& x = level_x_[k];
-  x = xp;
-  if (nzd > 0) {
-    xd.noalias() = Zd * y.head(nzd);
-    for (int b = 0; b < nd; ++b) x[dense_[b]] += xd[b];
-  }
-  for (int i = 0; i < nt; ++i) x[touched_[i]] += y[nzd + i];
-  // The touched free variables join the dense ones for the levels below: Zd <- [Zd 0; 0 I].
-  if (nt > 0 && k + 1 < numLevels()) {
-    Eigen::MatrixXd& Z = Z_[cur_];
-    Z.block(0, nzd, nd, nt).setZero();
-    Z.block(nd, 0, nt, nzd).setZero();
-    Z.block(nd, nzd, nt, nt).setIdentity();
-    for (int i = 0; i < nt; ++i) dense_[nd + i] = touched_[i];
-    n_dense_ += nt;
-    nzd_ += nt;
-  }
-  return QpStatus::kOptimal;
+  return status;
 }
 
 void HqpSolver::addDiagonalTerm(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& A,

@@ -77,6 +77,11 @@ class HqpSolver {
   void assembleFirst();           // level 0: its rows in E_, the used columns, H and g on them
   QpStatus solveFirst();          // level 0 on the columns its rows or the constraints touch (after assembleFirst)
   QpStatus solveReduced(int k);   // level k >= 1 in the null space of the levels above
+  void levelRows(int k);          // level k's rows and targets into E_, bE_; the free variables they touch
+  void reducedCost(int k);        // Hy, gy of level k's reduced QP
+  int reducedRows(const Eigen::VectorXd& xp);  // its constraint and box rows (Cy_, ylo_, yup_) and bounds
+  QpStatus solveReducedQp(int k, int rows);   // separable variables in closed form, the QP for the others
+
   void updateNullSpace(int k);    // Z_k from Z_{k-1} and the rows of level k-1
   void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
   void weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M, Eigen::Ref<Eigen::MatrixXd> WM);
