@@ -125,14 +125,7 @@ void HqpSolver::update() {
 void HqpSolver::assembleFirst() {
   // The rows of level 0 (into E_, their targets into bE_), then the columns they or a constraint row touch.
   const int m0 = level_offset_[1];
-  int row = 0;
-  for (const Term& t : stack_.levels[0].terms) {
-    const int m = t.size();
-    rowsOf(t);
-    E_.middleRows(row, m) = As_.topRows(m);
-    bE_.segment(row, m) = bs_.head(m);
-    row += m;
-  }
+  copyLevelRows(0);
   n_used_ = 0;
   for (int j = 0; j < n_; ++j) {
     const bool used = (m0 > 0 && E_.col(j).head(m0).cwiseAbs().maxCoeff() > 0.0) ||
@@ -146,7 +139,7 @@ void HqpSolver::assembleFirst() {
   auto g = all ? g_.head(n_) : gy_.head(nu);
   H.setZero();
   g.setZero();
-  row = 0;
+  int row = 0;
   for (const Term& t : stack_.levels[0].terms) {
     const int m = t.size();
     auto A = HZ_.topLeftCorner(m, nu);  // the term's rows on the used columns (E_'s own rows if all are used)
@@ -293,6 +286,17 @@ void HqpSolver::updateNullSpace(int k) {
   nz_ = nzd_ + n_free_;
 }
 
+void HqpSolver::copyLevelRows(int k) {
+  int row = level_offset_[k];
+  for (const Term& t : stack_.levels[k].terms) {
+    const int m = t.size();
+    rowsOf(t);
+    E_.middleRows(row, m) = As_.topRows(m);
+    bE_.segment(row, m) = bs_.head(m);
+    row += m;
+  }
+}
+
 void HqpSolver::rowsOf(const Term& t) {
   const Task& task = *t.task;
   const int m = t.size();
@@ -364,14 +368,7 @@ void HqpSolver::levelRows(int k) {
   // stay where level 0 put them (0 clipped to the box).
   const int first = level_offset_[k];
   const int mk = level_offset_[k + 1] - first;
-  int row = first;
-  for (const Term& t : stack_.levels[k].terms) {
-    const int m = t.size();
-    rowsOf(t);
-    E_.middleRows(row, m) = As_.topRows(m);
-    bE_.segment(row, m) = bs_.head(m);
-    row += m;
-  }
+  copyLevelRows(k);
   n_touched_ = 0;
   int kept = 0;
   for (int i = 0; i < n_free_; ++i) {

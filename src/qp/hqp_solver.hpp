@@ -84,6 +84,7 @@ class HqpSolver {
 
   void updateNullSpace(int k);    // Z_k from Z_{k-1} and the rows of level k-1
   void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
+  void copyLevelRows(int k);      // E_, bE_ <- the rows and lambda b of level k's terms
   void weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M, Eigen::Ref<Eigen::MatrixXd> WM);
   // level k >= 1: a diagonally weighted term's share of Hy, gy (its rows A, their dense-variable columns Ad,
   // residuals A x_{k-1}* - lambda b), exploiting the sparsity of its touched-free columns

@@ -40,6 +40,16 @@ void expectSameKinematics(const RobotModel& full, const RobotModel& part, bool v
     EXPECT_TRUE(J1.isApprox(J2, 1e-12)) << f;
   }
 }
+
+// Jacobian of the wheel's material point 7.8 cm below its centre (its ground contact point at rest)
+void expectSameContactJacobian(const RobotModel& full, const RobotModel& part, const char* wheel_name) {
+  RowMatrixXd J1(3, full.nv()), J2(3, full.nv());
+  const int wheel = full.frameId(wheel_name);
+  const Eigen::Vector3d contact = full.framePose(wheel).translation() - Eigen::Vector3d(0.0, 0.0, 0.078);
+  full.worldPointJacobian(wheel, contact, J1);
+  part.worldPointJacobian(wheel, contact, J2);
+  EXPECT_TRUE(J1.isApprox(J2, 1e-12)) << wheel_name;
+}
 }  // namespace
 
 TEST(RobotModelDetail, MomentumLevelMatchesTheFullUpdate) {
@@ -97,12 +107,7 @@ TEST(RobotModelDetail, KinematicsLevelMatchesTheFullUpdate) {
   full.update(q, v);
   part.update(q, v, RobotModel::Detail::kKinematics);
   expectSameKinematics(full, part);
-  RowMatrixXd J1(3, full.nv()), J2(3, full.nv());
-  const int wheel = full.frameId("wheel_3");
-  const Eigen::Vector3d contact = full.framePose(wheel).translation() - Eigen::Vector3d(0.0, 0.0, 0.078);
-  full.worldPointJacobian(wheel, contact, J1);
-  part.worldPointJacobian(wheel, contact, J2);
-  EXPECT_TRUE(J1.isApprox(J2, 1e-12));
+  expectSameContactJacobian(full, part, "wheel_3");
 }
 
 TEST(RobotModelDetail, JacobiansLevelMatchesTheFullUpdateWithoutVelocities) {
@@ -112,10 +117,5 @@ TEST(RobotModelDetail, JacobiansLevelMatchesTheFullUpdateWithoutVelocities) {
   full.update(q, v);
   part.update(q, v, RobotModel::Detail::kJacobians);
   expectSameKinematics(full, part, /*velocities=*/false);
-  RowMatrixXd J1(3, full.nv()), J2(3, full.nv());
-  const int wheel = full.frameId("wheel_1");
-  const Eigen::Vector3d contact = full.framePose(wheel).translation() - Eigen::Vector3d(0.0, 0.0, 0.078);
-  full.worldPointJacobian(wheel, contact, J1);
-  part.worldPointJacobian(wheel, contact, J2);
-  EXPECT_TRUE(J1.isApprox(J2, 1e-12));
+  expectSameContactJacobian(full, part, "wheel_1");
 }
