@@ -83,6 +83,7 @@ class HqpSolver {
   QpStatus solveReducedQp(int k, int rows);   // separable variables in closed form, the QP for the others
 
   void updateNullSpace(int k);    // Z_k from Z_{k-1} and the rows of level k-1
+  void firstNullSpace(const Eigen::Ref<const Eigen::MatrixXd>& B);  // Zd of level 0's rows B, block by block
   void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
   void copyLevelRows(int k);      // E_, bE_ <- the rows and lambda b of level k's terms
   void weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M, Eigen::Ref<Eigen::MatrixXd> WM);
@@ -117,6 +118,9 @@ class HqpSolver {
   Eigen::VectorXd nz_val_, w_;
   // separable touched variables (closed form) and the QP of the others, compacted
   std::vector<int> kept_, sep_;
+  // level 0's independent row blocks (firstNullSpace)
+  std::vector<int> block_root_, block_cols_, block_rows_, row_block_;
+  Eigen::MatrixXd Ab_;
   Eigen::MatrixXd Hc_, Cc_;
   Eigen::VectorXd gc_, blc_, buc_, ysol_;
   std::vector<int> level_rank_;

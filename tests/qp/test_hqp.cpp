@@ -397,3 +397,59 @@ TEST(Hqp, LevelsOnTheColumnsTheyTouchEqualTheFullProblem) {
   }
   EXPECT_GT(late_touches, 200);  // the trials do exercise variables that join at a lower level
 }
+
+TEST(Hqp, EveryLevelIsTheQpWithTheLevelsAboveAsEqualities) {
+  // The definition of the cascade, solved directly: level k minimises its terms plus eps ||x||^2 subject to
+  // A_j x = A_j x_j* for the levels j < k and the box, one plain QP in x with those equality rows (no null space,
+  // no variable partition, no blocks). Random 3-level stacks whose first level is made of independent blocks of
+  // rows (rows on disjoint columns, as the four feet), the others on random column subsets.
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const double eps = 1e-6;
+  for (int trial = 0; trial < 100; ++trial) {
+    const int n = 8 + trial % 6;
+    // level 0: blocks of 2 rows, each on its own 3 consecutive columns (the last columns stay free)
+    const int blocks = 1 + trial % 3;
+    MatrixXd A0 = MatrixXd::Zero(2 * blocks, n);
+    for (int b = 0; b < blocks; ++b)
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 3; ++j) A0(2 * b + i, 3 * b + j) = U(rng) - 0.5;
+    auto first = std::make_shared<LinearTask>("first", A0, VectorXd::Random(2 * blocks));
+    auto second = randomTask(rng, "second", 1 + trial % 3, n);
+    for (int j = 0; j < n; ++j)
+      if (U(rng) < 0.5) second->A().col(j).setZero();
+    auto third = randomTask(rng, "third", n, n);
+    auto box = std::make_shared<LinearConstraint>("box", n, 0);
+    for (int j = 0; j < n; ++j) {
+      box->lowerBounds()[j] = -0.3 - U(rng);
+      box->upperBounds()[j] = 0.3 + U(rng);
+    }
+    const Stack s = first / second / third << box;
+    HqpSolver hqp(s, n);
+    VectorXd x(n);
+    ASSERT_EQ(hqp.solve(x), QpStatus::kOptimal) << trial;
+
+    const std::shared_ptr<LinearTask> levels[3] = {first, second, third};
+    MatrixXd Aeq(0, n);
+    VectorXd beq(0);
+    for (int k = 0; k < 3; ++k) {
+      const LinearTask& t = *levels[k];
+      const MatrixXd H = t.A().transpose() * t.A() + eps * MatrixXd::Identity(n, n);
+      const VectorXd g = -t.A().transpose() * t.b();
+      QpSolver qp(n, static_cast<int>(Aeq.rows()), 0);
+      ASSERT_EQ(qp.solve(H, g, Aeq, beq, MatrixXd(0, n), VectorXd(0), VectorXd(0), box->lowerBounds(),
+                         box->upperBounds()),
+                QpStatus::kOptimal)
+          << "trial " << trial << " level " << k;
+      const VectorXd xk = qp.x();
+      EXPECT_LT((hqp.levelSolution(k) - xk).cwiseAbs().maxCoeff(), 1e-6) << "trial " << trial << " level " << k;
+      // the next levels keep this level's rows at their values
+      MatrixXd A2(Aeq.rows() + t.A().rows(), n);
+      A2 << Aeq, t.A();
+      VectorXd b2(beq.size() + t.A().rows());
+      b2 << beq, t.A() * xk;
+      Aeq = A2;
+      beq = b2;
+    }
+  }
+}
