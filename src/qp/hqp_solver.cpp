@@ -269,13 +269,11 @@ void HqpSolver::updateNullSpace(int k) {
         free_[n_free_++] = j;
       }
     }
-    auto B = B_.topLeftCorner(m, n_dense_);
-    for (int b = 0; b < n_dense_; ++b) B.col(b) = E_.col(dense_[b]).segment(first, m);
-    firstNullSpace(B);
+    dense_identity_ = n_dense_ == n_;
+    firstNullSpace(denseColumns(E_.middleRows(first, m), B_));
   } else if (nzd_ > 0) {
     // The rows of level k-1 touch dense variables only (the free ones they touch joined after its solve).
-    auto Ad = Ad_.topLeftCorner(m, n_dense_);
-    for (int b = 0; b < n_dense_; ++b) Ad.col(b) = E_.col(dense_[b]).segment(first, m);
+    const Eigen::Ref<const Eigen::MatrixXd> Ad = denseColumns(E_.middleRows(first, m), Ad_);
     auto B = B_.topLeftCorner(m, nzd_);
     productNoAlloc(B, Ad, Z_[prev].topLeftCorner(n_dense_, nzd_), false);
     double scale = 0.0;  // rank threshold relative to the rows before projection
@@ -301,17 +299,28 @@ void HqpSolver::firstNullSpace(const Eigen::Ref<const Eigen::MatrixXd>& B) {
     return c;
   };
   for (int c = 0; c < nu; ++c) block_root_[c] = c;
-  for (int r = 0; r < m; ++r) {
+  int blocks = nu;
+  for (int r = 0; r < m && blocks > 1; ++r) {
     int first_col = -1;
     for (int c = 0; c < nu; ++c) {
       if (B(r, c) == 0.0) continue;
       if (first_col < 0) {
         first_col = c;
       } else {
-        block_root_[root(c)] = root(first_col);
+        const int a = root(c), b = root(first_col);
+        if (a != b) {
+          block_root_[a] = b;
+          --blocks;
+        }
       }
     }
     row_block_[r] = first_col < 0 ? -1 : first_col;  // a column of the row's block (-1: an all-zero row)
+  }
+  if (blocks == 1) {  // one block (e.g. a dense row): the whole matrix at once
+    null_space_.compute(B, rank_tol_);
+    nzd_ = nu - null_space_.rank();
+    Z_[cur_].topLeftCorner(nu, nzd_) = null_space_.basis();
+    return;
   }
   double scale = 0.0;
   for (int r = 0; r < m; ++r) scale = std::max(scale, B.row(r).norm());
@@ -340,6 +349,14 @@ void HqpSolver::firstNullSpace(const Eigen::Ref<const Eigen::MatrixXd>& B) {
     nzd += static_cast<int>(N.cols());
   }
   nzd_ = nzd;
+}
+
+Eigen::Ref<const Eigen::MatrixXd> HqpSolver::denseColumns(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                                          Eigen::MatrixXd& work) const {
+  if (dense_identity_) return M;  // every variable is dense, in order: M itself
+  auto D = work.topLeftCorner(M.rows(), n_dense_);
+  for (int b = 0; b < n_dense_; ++b) D.col(b) = M.col(dense_[b]);
+  return D;
 }
 
 void HqpSolver::copyLevelRows(int k) {
@@ -413,6 +430,7 @@ QpStatus HqpSolver::solveReduced(int k) {
     Z.block(nd, nzd, nt, nt).setIdentity();
     for (int i = 0; i < nt; ++i) dense_[nd + i] = touched_[i];
     n_dense_ += nt;
+    dense_identity_ = false;
     nzd_ += nt;
   }
   return QpStatus::kOptimal;
@@ -455,8 +473,7 @@ void HqpSolver::reducedCost(int k) {
   for (const Term& t : stack_.levels[k].terms) {
     const int m = t.size();
     const auto A = E_.middleRows(row, m);
-    auto Ad = Ad_.topLeftCorner(m, nd);
-    for (int b = 0; b < nd; ++b) Ad.col(b) = A.col(dense_[b]);
+    const Eigen::Ref<const Eigen::MatrixXd> Ad = denseColumns(A, Ad_);
     auto res = res_.head(m);
     res.noalias() = A * xp;
     res -= bE_.segment(row, m);
@@ -484,8 +501,7 @@ int HqpSolver::reducedRows(const Eigen::VectorXd& xp) {
   // touched free one a bound on its own yt.
   int rows = 0;
   if (m_in_ > 0) {
-    auto Cd = Cd_.topLeftCorner(m_in_, nd);
-    for (int b = 0; b < nd; ++b) Cd.col(b) = C_.col(dense_[b]);
+    const Eigen::Ref<const Eigen::MatrixXd> Cd = denseColumns(C_, Cd_);
     productNoAlloc(Cy_.topLeftCorner(m_in_, nzd), Cd, Zd, false);
     Cy_.block(0, nzd, m_in_, nt).setZero();
     auto cxp = tmp_.head(m_in_);

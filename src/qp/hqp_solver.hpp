@@ -86,6 +86,10 @@ class HqpSolver {
   void firstNullSpace(const Eigen::Ref<const Eigen::MatrixXd>& B);  // Zd of level 0's rows B, block by block
   void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
   void copyLevelRows(int k);      // E_, bE_ <- the rows and lambda b of level k's terms
+  // M's columns of the dense variables, in their order: M itself if every variable is dense in order, else
+  // gathered into work
+  Eigen::Ref<const Eigen::MatrixXd> denseColumns(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                                 Eigen::MatrixXd& work) const;
   void weigh(const Term& t, const Eigen::Ref<const Eigen::MatrixXd>& M, Eigen::Ref<Eigen::MatrixXd> WM);
   // level k >= 1: a diagonally weighted term's share of Hy, gy (its rows A, their dense-variable columns Ad,
   // residuals A x_{k-1}* - lambda b), exploiting the sparsity of its touched-free columns
@@ -114,6 +118,7 @@ class HqpSolver {
   std::vector<int> free_;     // the free variables (n_free_)
   std::vector<int> touched_;  // the free variables the current level touches (n_touched_)
   int n_dense_ = 0, n_free_ = 0, n_touched_ = 0;
+  bool dense_identity_ = false;  // dense_ = 0, 1, ..., n-1
   std::vector<int> nz_idx_;  // a row's nonzero touched-free columns and their values (addDiagonalTerm)
   Eigen::VectorXd nz_val_, w_;
   // separable touched variables (closed form) and the QP of the others, compacted
