@@ -60,10 +60,8 @@ void HqpSolver::configure(const Stack& stack, int n, const QpSettings& settings)
   g_.setZero(n);
   bE_.setZero(std::max(total_rows, 1));
   E_.setZero(std::max(total_rows, 1), n);
-  As_.setZero(max_term_rows, n);
   WAs_.setZero(max_term_rows, n);
   Wsel_.setZero(max_term_rows, max_term_rows);
-  bs_.setZero(max_term_rows);
   res_.setZero(max_term_rows);
   C_.setZero(m_in_, n);
   c_lo_.setZero(m_in_);
@@ -220,8 +218,8 @@ QpStatus HqpSolver::solveFirst() {
   const Eigen::Map<const Eigen::VectorXd> none(nullptr, 0);
   QpSolver& qp = solvers_[0];
   if (n_used_ == n_) {
-    const QpStatus status = has_box_ ? qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, x_lo_, x_up_)
-                                     : qp.solve(H_, g_, E_.topRows(0), bs_.head(0), C_, c_lo_, c_up_, none, none);
+    const QpStatus status = has_box_ ? qp.solve(H_, g_, E_.topRows(0), bE_.head(0), C_, c_lo_, c_up_, x_lo_, x_up_)
+                                     : qp.solve(H_, g_, E_.topRows(0), bE_.head(0), C_, c_lo_, c_up_, none, none);
     if (status == QpStatus::kOptimal) level_x_[0] = qp.x();
     return status;
   }
@@ -240,9 +238,9 @@ QpStatus HqpSolver::solveFirst() {
       lo[b] = x_lo_[used_[b]];
       up[b] = x_up_[used_[b]];
     }
-    status = qp.solve(H, g, E_.topLeftCorner(0, nu), bs_.head(0), C, c_lo_, c_up_, lo, up);
+    status = qp.solve(H, g, E_.topLeftCorner(0, nu), bE_.head(0), C, c_lo_, c_up_, lo, up);
   } else {
-    status = qp.solve(H, g, E_.topLeftCorner(0, nu), bs_.head(0), C, c_lo_, c_up_, none, none);
+    status = qp.solve(H, g, E_.topLeftCorner(0, nu), bE_.head(0), C, c_lo_, c_up_, none, none);
   }
   if (status != QpStatus::kOptimal) return status;
   Eigen::VectorXd& x = level_x_[0];
@@ -360,28 +358,22 @@ Eigen::Ref<const Eigen::MatrixXd> HqpSolver::denseColumns(const Eigen::Ref<const
 }
 
 void HqpSolver::copyLevelRows(int k) {
+  // Straight into E_ / bE_: a term that takes every row of its task as one block copy, a selection row by row.
   int row = level_offset_[k];
   for (const Term& t : stack_.levels[k].terms) {
+    const Task& task = *t.task;
     const int m = t.size();
-    rowsOf(t);
-    E_.middleRows(row, m) = As_.topRows(m);
-    bE_.segment(row, m) = bs_.head(m);
+    if (t.rows.empty()) {
+      E_.middleRows(row, m) = task.A();
+      bE_.segment(row, m) = task.lambda() * task.b();
+    } else {
+      for (int r = 0; r < m; ++r) {
+        const int tr = t.taskRow(r);
+        E_.row(row + r) = task.A().row(tr);
+        bE_[row + r] = task.lambda() * task.b()[tr];
+      }
+    }
     row += m;
-  }
-}
-
-void HqpSolver::rowsOf(const Term& t) {
-  const Task& task = *t.task;
-  const int m = t.size();
-  if (t.rows.empty()) {  // every row: a block copy, column by column
-    As_.topRows(m) = task.A();
-    bs_.head(m) = task.lambda() * task.b();
-    return;
-  }
-  for (int r = 0; r < m; ++r) {
-    const int tr = t.taskRow(r);
-    As_.row(r) = task.A().row(tr);
-    bs_[r] = task.lambda() * task.b()[tr];
   }
 }
 

@@ -84,7 +84,6 @@ class HqpSolver {
 
   void updateNullSpace(int k);    // Z_k from Z_{k-1} and the rows of level k-1
   void firstNullSpace(const Eigen::Ref<const Eigen::MatrixXd>& B);  // Zd of level 0's rows B, block by block
-  void rowsOf(const Term& t);     // As_, bs_ <- the term's rows and lambda b
   void copyLevelRows(int k);      // E_, bE_ <- the rows and lambda b of level k's terms
   // M's columns of the dense variables, in their order: M itself if every variable is dense in order, else
   // gathered into work
@@ -106,8 +105,8 @@ class HqpSolver {
   std::vector<int> level_offset_;         // first row of level k in E_ (size levels + 1)
   std::vector<QpSolver> solvers_;
   std::vector<Eigen::VectorXd> level_x_;
-  Eigen::MatrixXd H_, E_, As_, WAs_, Wsel_, C_;
-  Eigen::VectorXd g_, bE_, bs_, c_lo_, c_up_, x_lo_, x_up_, res_;
+  Eigen::MatrixXd H_, E_, WAs_, Wsel_, C_;
+  Eigen::VectorXd g_, bE_, c_lo_, c_up_, x_lo_, x_up_, res_;
   // null-space reduction (levels >= 1): x = x_{k-1}* + Z y, Z = Zd (Z_[cur_], n_dense_ x nzd_) on the dense
   // variables and unit columns on the free ones (no row above touches them), so nz_ = nzd_ + n_free_
   NullSpace null_space_;
