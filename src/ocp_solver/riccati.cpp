@@ -1,0 +1,297 @@
+#include "ocp_solver/riccati.hpp"
+
+#include <cmath>
+
+#include <Eigen/SparseCore>
+
+namespace centaur::ocp_solver {
+
+namespace {
+
+// Gather rows/columns of `in` in the order `perm` (out(i, j) = in(perm[i], perm[j])).
+void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, Eigen::MatrixXd& out) {
+  const int n = static_cast<int>(perm.size());
+  out.resize(n, n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) out(i, j) = in(perm[i], perm[j]);
+}
+
+}  // namespace
+
+void RiccatiSolver::Stage::solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const {
+  if (nv == 0) return;
+  if (!use_eig) {
+    llt.solveInPlace(rhs);
+    return;
+  }
+  const Eigen::VectorXd& d = eig.eigenvalues();
+  Eigen::MatrixXd t = eig.eigenvectors().transpose() * rhs;
+  const double scale = std::max(1.0, d.cwiseAbs().maxCoeff());
+  for (int i = 0; i < nv; ++i) t.row(i) *= (std::abs(d[i]) > 1e-14 * scale) ? 1.0 / d[i] : 0.0;
+  rhs.noalias() = eig.eigenvectors() * t;
+}
+
+// Factor one stage given Q and the stacked rows Cs (filled by the caller): rank split of the rows by the
+// controls, reduced Hessian on the free control directions, cost-to-go P and pending rows Gamma.
+bool RiccatiSolver::eliminate(Stage& s) {
+  const int nx = s.nx, nu = s.nu, n = nx + nu, m = s.m;
+  s.row_scale.resize(m);
+  for (int i = 0; i < m; ++i) {
+    const double a = n > 0 ? s.Cs.row(i).cwiseAbs().maxCoeff() : 0.0;
+    s.row_scale[i] = a > 0.0 ? 1.0 / a : 1.0;
+    s.Cs.row(i) *= s.row_scale[i];
+  }
+  s.lu.compute(s.Cs.rightCols(nu), opt_.rank_tol);
+  const int r = s.lu.rank();
+  s.rank = r;
+  s.nv = nu - r;
+  const int nv = s.nv, w = nx + nv;
+  const std::vector<int>& rp = s.lu.rowPerm();
+  const std::vector<int>& cp = s.lu.colPerm();
+  s.perm.resize(n);
+  for (int i = 0; i < nx; ++i) s.perm[i] = i;
+  for (int j = 0; j < nv; ++j) s.perm[nx + j] = nx + cp[r + j];
+  for (int j = 0; j < r; ++j) s.perm[w + j] = nx + cp[j];
+
+  // State part of the rows, in pivot order, with the row transformation applied: the dependent rows become
+  // rows on x alone (pending) or vanish (dependent rows of the whole KKT matrix: zero eigenvalues).
+  Eigen::MatrixXd& X = s.X;
+  X.resize(m, nx);
+  for (int i = 0; i < m; ++i) X.row(i) = s.Cs.row(rp[i]).head(nx);
+  s.lu.applyRowTransform(X);
+  s.kept.clear();
+  for (int i = r; i < m; ++i) {
+    if (nx > 0 && X.row(i).cwiseAbs().maxCoeff() > opt_.rank_tol) {
+      s.kept.push_back(i - r);
+    } else {
+      ++inertia_.zero;
+    }
+  }
+  s.Gamma.resize(static_cast<int>(s.kept.size()), nx);
+  for (std::size_t j = 0; j < s.kept.size(); ++j) s.Gamma.row(static_cast<int>(j)) = X.row(r + s.kept[j]);
+
+  // u_B = E [x; u_N] + e with E = -U1^{-1} [X_I, U2].
+  s.E.resize(r, w);
+  s.E.leftCols(nx) = -X.topRows(r);
+  s.E.rightCols(nv) = -s.lu.packed().block(0, r, r, nv);
+  s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().solveInPlace(s.E);
+
+  // Reduced Hessian Qh = T' Qp T with T = [I; E]: Qp_WW + E' F + F' E, F = Qp_BW + 1/2 Qp_BB E (lower
+  // triangle only, then mirrored).
+  permuteSymmetric(s.Q, s.perm, s.Qp);
+  s.F = s.Qp.block(w, 0, r, w);
+  s.F.noalias() += 0.5 * s.Qp.bottomRightCorner(r, r) * s.E;
+  s.Qh = s.Qp.topLeftCorner(w, w);
+  if (r > 0) {
+    s.Qh.triangularView<Eigen::Lower>() += s.E.transpose() * s.F;
+    s.Qh.triangularView<Eigen::Lower>() += s.F.transpose() * s.E;
+    s.Qh.triangularView<Eigen::StrictlyUpper>() = s.Qh.transpose();
+  }
+  inertia_.positive += r;
+  inertia_.negative += r;
+
+  s.use_eig = false;
+  s.K.resize(nv, nx);
+  if (nv > 0) {
+    s.llt.compute(s.Qh.bottomRightCorner(nv, nv));
+    if (s.llt.info() == Eigen::Success) {
+      inertia_.positive += nv;
+      s.K = s.Qh.bottomLeftCorner(nv, nx);
+      s.llt.matrixL().solveInPlace(s.K);
+    } else {
+      if (!opt_.full_inertia) return false;
+      s.use_eig = true;
+      s.eig.compute(s.Qh.bottomRightCorner(nv, nv));
+      const Eigen::VectorXd& d = s.eig.eigenvalues();
+      const double scale = std::max(1.0, d.cwiseAbs().maxCoeff());
+      for (int i = 0; i < nv; ++i) {
+        if (std::abs(d[i]) <= 1e-14 * scale) ++inertia_.zero;
+        else if (d[i] > 0) ++inertia_.positive;
+        else ++inertia_.negative;
+      }
+    }
+  }
+  s.P = s.Qh.topLeftCorner(nx, nx);
+  if (nv > 0) {
+    if (!s.use_eig) {
+      s.P.selfadjointView<Eigen::Lower>().rankUpdate(s.K.transpose(), -1.0);
+    } else {
+      Eigen::MatrixXd t = s.Qh.bottomLeftCorner(nv, nx);
+      s.solveNN(t);
+      s.P.triangularView<Eigen::Lower>() -= s.Qh.topRightCorner(nx, nv) * t;
+    }
+    s.P.triangularView<Eigen::StrictlyUpper>() = s.P.transpose();
+  }
+  return true;
+}
+
+RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp) {
+  const int N = static_cast<int>(qp.size()) - 1;
+  st_.resize(N + 2);
+  inertia_ = Inertia{};
+  failed_stage_ = -1;
+  factored_ = false;
+  for (int k = N; k >= 0; --k) {
+    Stage& s = st_[k];
+    const StageQp& d = qp[k];
+    s.nx = d.nx;
+    s.nu = d.nu;
+    const int n = d.nx + d.nu;
+    const Stage* next = k < N ? &st_[k + 1] : nullptr;
+    const int npend = next ? static_cast<int>(next->Gamma.rows()) : 0;
+    s.m_own = static_cast<int>(d.C.rows());
+    s.m = s.m_own + npend;
+    s.Q = d.H;
+    s.Cs.resize(s.m, n);
+    s.Cs.topRows(s.m_own) = d.C;
+    if (next) {
+      // Q += M' P M and the next stage's pending rows Gamma M, with the dynamics M = [A B] as a sparse matrix
+      // (continuity Jacobians are mostly identity and diagonal blocks).
+      s.M.resize(next->nx, n);
+      s.M.leftCols(d.nx) = d.A;
+      s.M.rightCols(d.nu) = d.B;
+      s.Msp = s.M.sparseView();
+      s.PM.noalias() = next->P * s.Msp;
+      s.PMt = s.PM.transpose();
+      s.Q.noalias() += s.PMt * s.Msp;
+      if (npend > 0) s.Cs.bottomRows(npend).noalias() = next->Gamma * s.Msp;
+      inertia_.positive += next->nx;
+      inertia_.negative += next->nx;
+    }
+    if (!eliminate(s)) {
+      failed_stage_ = k;
+      return Status::kWrongInertia;
+    }
+  }
+  // The initial state: a stage without state whose controls are x_0, cost P_0 and rows the pending ones of stage 0.
+  Stage& v = st_[N + 1];
+  v.nx = 0;
+  v.nu = st_[0].nx;
+  v.m_own = 0;
+  v.m = static_cast<int>(st_[0].Gamma.rows());
+  v.Q = st_[0].P;
+  v.Cs = st_[0].Gamma;
+  if (!eliminate(v)) {
+    failed_stage_ = N + 1;
+    return Status::kWrongInertia;
+  }
+  factored_ = true;
+  if (failed_stage_ < 0) {
+    for (int k = 0; k <= N + 1; ++k) {
+      if (st_[k].use_eig) {
+        failed_stage_ = k;
+        break;
+      }
+    }
+  }
+  if (failed_stage_ >= 0) return Status::kWrongInertia;
+  return inertia_.zero > 0 ? Status::kSingular : Status::kOk;
+}
+
+void RiccatiSolver::backwardVectors(const std::vector<StageQp>& qp) {
+  const int N = static_cast<int>(qp.size()) - 1;
+  for (int step = 0; step <= N + 1; ++step) {
+    const int k = step <= N ? N - step : N + 1;  // stages N..0, then the initial state
+    Stage& s = st_[k];
+    const int nx = s.nx, nu = s.nu, n = nx + nu, r = s.rank, nv = s.nv, w = nx + nv;
+    if (k == N + 1) {
+      s.q = st_[0].p;
+      s.cs = st_[0].gamma;
+    } else {
+      const StageQp& d = qp[k];
+      s.q = d.h;
+      s.cs.resize(s.m);
+      s.cs.head(s.m_own) = d.c;
+      if (k < N) {
+        const Stage& nx1 = st_[k + 1];
+        Eigen::VectorXd wv = nx1.p;
+        wv.noalias() += nx1.P * d.b;
+        s.q.head(nx).noalias() += d.A.transpose() * wv;
+        s.q.tail(nu).noalias() += d.B.transpose() * wv;
+        s.cs.tail(s.m - s.m_own) = nx1.gamma;
+        s.cs.tail(s.m - s.m_own).noalias() += nx1.Gamma * d.b;
+      }
+    }
+    s.cs.array() *= s.row_scale.array();
+    Eigen::VectorXd ct(s.m);
+    for (int i = 0; i < s.m; ++i) ct[i] = s.cs[s.lu.rowPerm()[i]];
+    s.lu.applyRowTransform(ct);
+    s.gamma.resize(static_cast<int>(s.kept.size()));
+    for (std::size_t j = 0; j < s.kept.size(); ++j) s.gamma[static_cast<int>(j)] = ct[r + s.kept[j]];
+    s.e = -ct.head(r);
+    s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().solveInPlace(s.e);
+    s.qp.resize(n);
+    for (int i = 0; i < n; ++i) s.qp[i] = s.q[s.perm[i]];
+    s.g = s.qp;
+    s.g.noalias() += s.Qp.rightCols(r) * s.e;
+    s.qh = s.g.head(w);
+    s.qh.noalias() += s.E.transpose() * s.g.tail(r);
+    s.kff = -s.qh.tail(nv);
+    s.solveNN(s.kff);
+    s.p = s.qh.head(nx);
+    s.p.noalias() += s.Qh.topRightCorner(nx, nv) * s.kff;
+  }
+}
+
+void RiccatiSolver::stageForward(Stage& s, const Eigen::VectorXd& x, const Eigen::VectorXd& eta_pending,
+                                 Eigen::VectorXd& z, Eigen::VectorXd& eta_stacked) {
+  const int nx = s.nx, nu = s.nu, n = nx + nu, r = s.rank, nv = s.nv, w = nx + nv;
+  s.zp.resize(n);
+  s.zp.head(nx) = x;
+  Eigen::VectorXd t = s.qh.tail(nv);
+  t.noalias() += s.Qh.bottomLeftCorner(nv, nx) * x;
+  s.solveNN(t);
+  s.zp.segment(nx, nv) = -t;
+  s.zp.tail(r) = s.e;
+  s.zp.tail(r).noalias() += s.E * s.zp.head(w);
+  z.resize(n);
+  for (int i = 0; i < n; ++i) z[s.perm[i]] = s.zp[i];
+  // Multipliers of the stacked rows: the fixed control directions give the independent ones, the pending
+  // rows' multipliers come from the previous stage; then back to the original rows.
+  Eigen::VectorXd gfull = s.qp;
+  gfull.noalias() += s.Qp * s.zp;
+  s.eta_t.setZero(s.m);
+  s.eta_t.head(r) = -gfull.tail(r);
+  s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().transpose().solveInPlace(s.eta_t.head(r));
+  for (std::size_t j = 0; j < s.kept.size(); ++j) s.eta_t[r + s.kept[j]] = eta_pending[static_cast<int>(j)];
+  s.lu.applyRowTransformTransposed(s.eta_t);
+  eta_stacked.resize(s.m);
+  for (int i = 0; i < s.m; ++i) eta_stacked[s.lu.rowPerm()[i]] = s.eta_t[i];
+  eta_stacked.array() *= s.row_scale.array();
+}
+
+void RiccatiSolver::forward(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol) {
+  const int N = static_cast<int>(qp.size()) - 1;
+  sol.resize(N + 1);
+  Eigen::VectorXd x(0), z, eta_stacked, eta_pending(0);
+  stageForward(st_[N + 1], x, eta_pending, z, eta_stacked);
+  x = z;
+  eta_pending = eta_stacked;
+  for (int k = 0; k <= N; ++k) {
+    Stage& s = st_[k];
+    stageForward(s, x, eta_pending, z, eta_stacked);
+    StageSolution& o = sol[k];
+    o.x = z.head(s.nx);
+    o.u = z.tail(s.nu);
+    o.eta = eta_stacked.head(s.m_own);
+    if (k == N) {
+      o.lambda.resize(0);
+      break;
+    }
+    const Stage& nx1 = st_[k + 1];
+    eta_pending = eta_stacked.tail(s.m - s.m_own);
+    x = qp[k].b;
+    x.noalias() += qp[k].A * o.x;
+    x.noalias() += qp[k].B * o.u;
+    o.lambda = nx1.p;
+    o.lambda.noalias() += nx1.P * x;
+    o.lambda.noalias() += nx1.Gamma.transpose() * eta_pending;
+  }
+}
+
+void RiccatiSolver::solve(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol) {
+  backwardVectors(qp);
+  forward(qp, sol);
+}
+
+}  // namespace centaur::ocp_solver

@@ -1,0 +1,96 @@
+#pragma once
+// Structured factorization of the stage-wise KKT system of a StageQp (stage_qp.hpp): a generalized Riccati
+// recursion for stage-wise equality constraints.
+//
+// Backward, stage by stage: the cost-to-go of stage k+1 (a quadratic in x_{k+1}, P_{k+1}) is pulled back through
+// the dynamics; the stage rows plus the rows stage k+1 could not satisfy itself ("pending" rows on x_{k+1}) are
+// stacked and factored with complete pivoting in the controls u_k: the independent ones fix as many control
+// directions, the dependent ones become pending rows on x_k for stage k-1; the cost on the remaining control
+// directions (the reduced Hessian) is factored by Cholesky and eliminated, which gives P_k. After stage 0 the
+// initial state x_0 is eliminated the same way (it is a decision variable). Forward, the states, controls and
+// every multiplier are recovered.
+//
+// Inertia (Sylvester's law on the block elimination): every eliminated row pairs with one control direction
+// (+1, -1), every dynamics row with one state (+1, -1), and the reduced Hessians add their own inertia. The KKT
+// matrix has the inertia an interior-point method needs, (n, m, 0), exactly when every reduced Hessian is
+// positive definite and no row was found dependent; rows that are combinations of others (a rank-deficient
+// constraint Jacobian) are counted as zero eigenvalues and make the status kSingular.
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+#include "ocp_solver/pivoted_lu.hpp"
+#include "ocp_solver/stage_qp.hpp"
+
+namespace centaur::ocp_solver {
+
+class RiccatiSolver {
+ public:
+  struct Options {
+    double rank_tol = 1e-10;    ///< pivot threshold on the equilibrated rows (each row scaled to max |entry| 1)
+    bool full_inertia = false;  ///< keep going past an indefinite reduced Hessian to count the whole inertia
+  };
+  enum class Status { kOk, kWrongInertia, kSingular };
+
+  RiccatiSolver() = default;
+  explicit RiccatiSolver(const Options& o) : opt_(o) {}
+
+  /// Factor the matrix part (H, A, B, C) of `qp`. kWrongInertia as soon as a reduced Hessian is not positive
+  /// definite (unless full_inertia); kSingular if rows are dependent (the counts are still computed).
+  Status factor(const std::vector<StageQp>& qp);
+  /// Solve with the right-hand sides (h, b, c) of `qp` (same matrices as the last factor()). Allowed after
+  /// kOk or kSingular (dependent rows get zero multipliers) and after kWrongInertia with full_inertia.
+  void solve(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol);
+
+  const Inertia& inertia() const { return inertia_; }
+  /// The stage whose reduced Hessian was found indefinite first (-1: none; N + 1: the initial state).
+  int failedStage() const { return failed_stage_; }
+  const Options& options() const { return opt_; }
+
+ private:
+  struct Stage;
+  bool eliminate(Stage& s);
+  void backwardVectors(const std::vector<StageQp>& qp);
+  void forward(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol);
+  void stageForward(Stage& s, const Eigen::VectorXd& x, const Eigen::VectorXd& eta_pending, Eigen::VectorXd& z,
+                    Eigen::VectorXd& eta_stacked);
+
+  Options opt_;
+  std::vector<Stage> st_;  // stages 0..N, then the initial-state elimination at index N + 1
+  Inertia inertia_;
+  int failed_stage_ = -1;
+  bool factored_ = false;
+};
+
+/// The per-stage factors (public only so that the implementation file can define it).
+struct RiccatiSolver::Stage {
+  int nx = 0, nu = 0, m = 0, m_own = 0, rank = 0, nv = 0;
+  Eigen::MatrixXd Q;          // (nx+nu)^2, the stage cost plus the pulled-back cost-to-go
+  Eigen::MatrixXd Cs;         // stacked rows (own, then pending of the next stage), equilibrated
+  Eigen::VectorXd row_scale;  // Cs = diag(row_scale) * [C; Gamma_next M]
+  PivotedLu lu;               // of the control columns of Cs
+  std::vector<int> perm;      // z order used below: [x, u_N (free directions), u_B (fixed by the rows)]
+  Eigen::MatrixXd Qp;         // Q in that order
+  Eigen::MatrixXd E;          // u_B = E [x; u_N] + e
+  Eigen::MatrixXd Qh;         // reduced Hessian on [x; u_N]
+  Eigen::LLT<Eigen::MatrixXd> llt;                          // of its u_N block
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;       // fallback (full_inertia only)
+  bool use_eig = false;
+  Eigen::MatrixXd K;          // L^{-1} Qh_{N x}
+  Eigen::MatrixXd P;          // cost-to-go Hessian in x
+  Eigen::MatrixXd Gamma;      // pending rows on x passed to the previous stage (kept ones)
+  std::vector<int> kept;      // their positions among the dependent rows
+  // workspace
+  Eigen::MatrixXd M, PM, PMt, X, F;
+  Eigen::SparseMatrix<double> Msp;
+  // vectors of the last solve
+  Eigen::VectorXd q, qp, cs, e, qh, kff, p, gamma;
+  Eigen::VectorXd zp, g, eta_t;
+  // helpers
+  void solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const;  // Qh_NN^{-1} rhs
+};
+
+}  // namespace centaur::ocp_solver

@@ -1,0 +1,350 @@
+#include "ocp_solver/stage_kkt.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace centaur::ocp_solver {
+
+StageKktSolver::StageKktSolver(const SparsePattern& p, const StageLayout& layout, const std::vector<char>& fixed,
+                               const std::vector<char>& equality, RiccatiSolver::Options options)
+    : n_(p.n), m_(p.m), N_(layout.num_stages - 1), layout_(layout), fixed_(fixed), equality_(equality),
+      pattern_(p), riccati_(options) {
+  if (N_ < 0 || static_cast<int>(layout.stage.size()) != n_ || static_cast<int>(layout.is_state.size()) != n_ ||
+      static_cast<int>(fixed.size()) != n_ || static_cast<int>(equality.size()) != m_) {
+    throw StructureError("StageKktSolver: layout sizes do not match the pattern");
+  }
+  nx_.assign(N_ + 1, 0);
+  nu_.assign(N_ + 1, 0);
+  local_.resize(n_);
+  for (int v = 0; v < n_; ++v) {
+    const int s = layout.stage[v];
+    if (s < 0 || s > N_) throw StructureError("StageKktSolver: variable " + std::to_string(v) + " outside the stages");
+    local_[v] = layout.is_state[v] ? nx_[s]++ : nu_[s]++;
+  }
+  if (nu_[N_] != 0) throw StructureError("StageKktSolver: the last stage has controls");
+  analyzeRows(p, equality);
+  analyzeCarried(p);
+  diag_.setZero(m_);
+}
+
+int StageKktSolver::colOf(int stage, int var) const {
+  const int s = layout_.stage[var];
+  const int nc = static_cast<int>(carried_[stage].size());
+  if (s == stage) return layout_.is_state[var] ? local_[var] : nx_[stage] + nc + local_[var];
+  const auto& c = carried_[stage];
+  const auto it = std::lower_bound(c.begin(), c.end(), var);
+  return (it != c.end() && *it == var) ? nx_[stage] + static_cast<int>(it - c.begin()) : -1;
+}
+
+// Dynamics rows first (one per component of every x_{k+1}), then every other row's owner stage and kind.
+void StageKktSolver::analyzeRows(const SparsePattern& p, const std::vector<char>& equality) {
+  std::vector<std::vector<std::pair<int, int>>> by_row(m_);  // (slot, var)
+  for (std::size_t t = 0; t < p.jac_rows.size(); ++t) by_row[p.jac_rows[t]].push_back({static_cast<int>(t), p.jac_cols[t]});
+  rows_.assign(m_, Row{});
+  dynamics_row_.assign(m_, 0);
+  dyn_rows_.assign(N_, {});
+  for (int k = 0; k < N_; ++k) dyn_rows_[k].assign(nx_[k + 1], -1);
+  std::vector<int> smin(m_, N_ + 1), smax(m_, -1), next_states(m_, 0);
+  std::vector<char> next_only_states(m_, 1);
+  for (int r = 0; r < m_; ++r) {
+    for (const auto& [slot, v] : by_row[r]) {
+      smin[r] = std::min(smin[r], layout_.stage[v]);
+      smax[r] = std::max(smax[r], layout_.stage[v]);
+    }
+    for (const auto& [slot, v] : by_row[r]) {
+      if (layout_.stage[v] != smax[r]) continue;
+      if (layout_.is_state[v]) ++next_states[r];
+      else next_only_states[r] = 0;
+    }
+  }
+  for (int r = 0; r < m_; ++r) {  // dynamics: one entry on x_{k+1}, the others on stage k
+    if (!equality[r] || smax[r] != smin[r] + 1 || !next_only_states[r] || next_states[r] != 1) continue;
+    const int k = smin[r];
+    for (const auto& [slot, v] : by_row[r]) {
+      if (layout_.stage[v] != k + 1) continue;
+      int& d = dyn_rows_[k][local_[v]];
+      if (d < 0) {
+        d = r;
+        dynamics_row_[r] = 1;
+        rows_[r].kind = RowKind::kDynamics;
+        rows_[r].stage = k;
+        rows_[r].comp = local_[v];
+      }
+    }
+  }
+  for (int k = 0; k < N_; ++k)
+    for (int j = 0; j < nx_[k + 1]; ++j)
+      if (dyn_rows_[k][j] < 0)
+        throw StructureError("StageKktSolver: state " + std::to_string(j) + " of stage " + std::to_string(k + 1) +
+                             " has no dynamics row (x_{k+1} with a single entry, the rest on stage k)");
+  for (int r = 0; r < m_; ++r) {
+    if (by_row[r].empty()) throw StructureError("StageKktSolver: constraint row " + std::to_string(r) + " is empty");
+    Row& row = rows_[r];
+    if (row.kind == RowKind::kDynamics) continue;
+    if (smax[r] == smin[r] + 1 && next_only_states[r]) {
+      row.kind = RowKind::kCoupled;
+      row.stage = smin[r];
+    } else {
+      row.kind = RowKind::kLocal;  // earlier variables, if any, are carried into the last stage
+      row.stage = smax[r];
+    }
+  }
+  // Entries (columns are set after the carried variables are known).
+  for (int r = 0; r < m_; ++r)
+    for (const auto& [slot, v] : by_row[r]) rows_[r].entries.push_back(Entry{slot, v, false});
+}
+
+void StageKktSolver::analyzeCarried(const SparsePattern& p) {
+  std::vector<std::set<int>> carry(N_ + 1);
+  auto need = [&](int var, int stage) {
+    for (int s = layout_.stage[var] + 1; s <= stage; ++s) carry[s].insert(var);
+  };
+  for (const Row& row : rows_) {
+    if (row.kind != RowKind::kLocal) continue;
+    for (const Entry& e : row.entries)
+      if (layout_.stage[e.col] < row.stage) need(e.col, row.stage);  // e.col still holds the variable here
+  }
+  for (std::size_t t = 0; t < p.hess_rows.size(); ++t) {
+    const int a = p.hess_rows[t], b = p.hess_cols[t];
+    const int sa = layout_.stage[a], sb = layout_.stage[b];
+    if (sa < sb) need(a, sb);
+    if (sb < sa) need(b, sa);
+  }
+  carried_.assign(N_ + 1, {});
+  for (int s = 0; s <= N_; ++s) carried_[s].assign(carry[s].begin(), carry[s].end());
+  carry_src_.assign(N_ + 1, {});
+  for (int s = 1; s <= N_; ++s)
+    for (int v : carried_[s]) carry_src_[s].push_back(colOf(s - 1, v));
+
+  stage_rows_.assign(N_ + 1, {});
+  for (int r = 0; r < m_; ++r) {
+    Row& row = rows_[r];
+    for (Entry& e : row.entries) {
+      const int v = e.col;
+      if (row.kind != RowKind::kLocal && layout_.stage[v] == row.stage + 1) {
+        e.next = true;
+        e.col = local_[v];
+      } else {
+        e.col = colOf(row.stage, v);
+      }
+    }
+    if (row.kind != RowKind::kDynamics) stage_rows_[row.stage].push_back(r);
+  }
+  for (std::size_t t = 0; t < p.hess_rows.size(); ++t) {
+    const int a = p.hess_rows[t], b = p.hess_cols[t];
+    const int s = std::max(layout_.stage[a], layout_.stage[b]);
+    hess_entries_.push_back(HessEntry{static_cast<int>(t), s, colOf(s, a), colOf(s, b)});
+  }
+  fixed_cols_.assign(N_ + 1, {});
+  for (int v = 0; v < n_; ++v)
+    if (fixed_[v]) fixed_cols_[layout_.stage[v]].push_back(colOf(layout_.stage[v], v));
+  qp_.resize(N_ + 1);
+  exact_rows_.assign(N_ + 1, {});
+  penalty_rows_.assign(N_ + 1, {});
+}
+
+// A row of stage k as a dense vector over z_k; a coupled row gets the dynamics substituted for x_{k+1}
+// (rhs_shift: its constant J_next b, which the caller adds to the row's right-hand side).
+void StageKktSolver::rowVector(const Row& row, const double* jac, Eigen::VectorXd& a, double& rhs_shift) const {
+  const StageQp& q = qp_[row.stage];
+  a.setZero(q.nx + q.nu);
+  rhs_shift = 0.0;
+  for (const Entry& e : row.entries) {
+    const double v = jac[e.slot];
+    if (!e.next) {
+      a[e.col] += v;
+    } else {
+      a.head(q.nx).noalias() += v * q.A.row(e.col).transpose();
+      a.tail(q.nu).noalias() += v * q.B.row(e.col).transpose();
+      rhs_shift += v * q.b[e.col];
+    }
+  }
+}
+
+KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
+                                 const Eigen::VectorXd& dc) {
+  jac_ = jac;
+  hess_ = hess;
+  dx_diag_ = dx;
+  dc_ = dc;
+  for (int k = 0; k <= N_; ++k) {
+    exact_rows_[k].clear();
+    penalty_rows_[k].clear();
+    for (int r : stage_rows_[k]) (dc[r] > 0.0 ? penalty_rows_[k] : exact_rows_[k]).push_back(r);
+    const int m = static_cast<int>(fixed_cols_[k].size() + exact_rows_[k].size());
+    const int nxa = nx_[k] + static_cast<int>(carried_[k].size());
+    const int nxn = k < N_ ? nx_[k + 1] + static_cast<int>(carried_[k + 1].size()) : 0;
+    qp_[k].resize(nxa, nu_[k], m, nxn);
+  }
+  for (const HessEntry& h : hess_entries_) {
+    Eigen::MatrixXd& H = qp_[h.stage].H;
+    H(h.r, h.c) += hess[h.slot];
+    if (h.r != h.c) H(h.c, h.r) += hess[h.slot];
+  }
+  for (int v = 0; v < n_; ++v) {
+    const int s = layout_.stage[v], c = colOf(s, v);
+    qp_[s].H(c, c) += fixed_[v] ? 1.0 : dx[v];
+  }
+  // Dynamics x_{k+1} = A z_k + b, scaled by the entry d on x_{k+1}; carried variables are copied.
+  for (int k = 0; k < N_; ++k) {
+    StageQp& q = qp_[k];
+    for (int j = 0; j < nx_[k + 1]; ++j) {
+      const Row& row = rows_[dyn_rows_[k][j]];
+      double d = 0.0;
+      for (const Entry& e : row.entries)
+        if (e.next) d += jac[e.slot];
+      diag_[dyn_rows_[k][j]] = d;
+      for (const Entry& e : row.entries) {
+        if (e.next) continue;
+        if (e.col < q.nx) q.A(j, e.col) -= jac[e.slot] / d;
+        else q.B(j, e.col - q.nx) -= jac[e.slot] / d;
+      }
+    }
+    for (std::size_t c = 0; c < carried_[k + 1].size(); ++c) {
+      const int src = carry_src_[k + 1][c], dst = nx_[k + 1] + static_cast<int>(c);
+      if (src < q.nx) q.A(dst, src) = 1.0;
+      else q.B(dst, src - q.nx) = 1.0;
+    }
+  }
+  Eigen::VectorXd a;
+  double shift = 0.0;
+  for (int k = 0; k <= N_; ++k) {
+    StageQp& q = qp_[k];
+    int i = 0;
+    for (int c : fixed_cols_[k]) q.C(i++, c) = 1.0;
+    for (int r : exact_rows_[k]) {
+      rowVector(rows_[r], jac, a, shift);
+      q.C.row(i++) = a.transpose();
+    }
+    for (int r : penalty_rows_[k]) {
+      const Row& row = rows_[r];
+      const double w = 1.0 / dc[r];
+      if (row.kind == RowKind::kLocal) {  // sparse outer product
+        for (const Entry& e1 : row.entries)
+          for (const Entry& e2 : row.entries) q.H(e1.col, e2.col) += w * jac[e1.slot] * jac[e2.slot];
+      } else {
+        rowVector(row, jac, a, shift);
+        q.H.noalias() += w * a * a.transpose();
+      }
+    }
+  }
+  switch (riccati_.factor(qp_)) {
+    case RiccatiSolver::Status::kOk: return KktStatus::kOk;
+    case RiccatiSolver::Status::kSingular: return KktStatus::kSingular;
+    default: return KktStatus::kWrongInertia;
+  }
+}
+
+double StageKktSolver::residual(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, const Eigen::VectorXd& dx,
+                                const Eigen::VectorXd& dy, Eigen::VectorXd& res_x, Eigen::VectorXd& res_c) const {
+  res_x = rx;
+  res_c = rc;
+  double kmax = 0.0;
+  for (std::size_t t = 0; t < pattern_.hess_rows.size(); ++t) {
+    const int a = pattern_.hess_rows[t], b = pattern_.hess_cols[t];
+    res_x[a] -= hess_[t] * dx[b];
+    if (a != b) res_x[b] -= hess_[t] * dx[a];
+    kmax = std::max(kmax, std::abs(hess_[t]));
+  }
+  for (int v = 0; v < n_; ++v) {
+    res_x[v] -= dx_diag_[v] * dx[v];
+    kmax = std::max(kmax, std::abs(dx_diag_[v]));
+  }
+  for (std::size_t t = 0; t < pattern_.jac_rows.size(); ++t) {
+    const int r = pattern_.jac_rows[t], c = pattern_.jac_cols[t];
+    res_x[c] -= jac_[t] * dy[r];
+    res_c[r] -= jac_[t] * dx[c];
+    kmax = std::max(kmax, std::abs(jac_[t]));
+  }
+  for (int r = 0; r < m_; ++r)
+    if (!dynamics_row_[r]) res_c[r] += dc_[r] * dy[r];
+  for (int v = 0; v < n_; ++v)
+    if (fixed_[v]) res_x[v] = 0.0;
+  const double sol = std::max(dx.cwiseAbs().maxCoeff(), dy.size() ? dy.cwiseAbs().maxCoeff() : 0.0);
+  return std::max({rx.cwiseAbs().maxCoeff(), rc.size() ? rc.cwiseAbs().maxCoeff() : 0.0, kmax * sol, 1e-300});
+}
+
+void StageKktSolver::solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
+                           Eigen::VectorXd& dy) {
+  solveOnce(rx, rc, dx, dy);
+  for (int it = 0;; ++it) {
+    const double scale = residual(rx, rc, dx, dy, res_x_, res_c_);
+    const double r = std::max(res_x_.cwiseAbs().maxCoeff(), m_ ? res_c_.cwiseAbs().maxCoeff() : 0.0);
+    last_residual_ = r / scale;
+    if (last_residual_ <= 1e-12 || it >= max_refinement) break;
+    solveOnce(res_x_, res_c_, ddx_, ddy_);
+    dx += ddx_;
+    dy += ddy_;
+  }
+}
+
+void StageKktSolver::solveOnce(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
+                               Eigen::VectorXd& dy) {
+  for (int k = 0; k <= N_; ++k) {
+    qp_[k].h.setZero();
+    qp_[k].c.setZero();
+  }
+  for (int v = 0; v < n_; ++v)
+    if (!fixed_[v]) qp_[layout_.stage[v]].h[colOf(layout_.stage[v], v)] = -rx[v];
+  for (int k = 0; k < N_; ++k) {
+    StageQp& q = qp_[k];
+    for (int j = 0; j < nx_[k + 1]; ++j) q.b[j] = rc[dyn_rows_[k][j]] / diag_[dyn_rows_[k][j]];
+  }
+  Eigen::VectorXd a;
+  double shift = 0.0;
+  for (int k = 0; k <= N_; ++k) {
+    StageQp& q = qp_[k];
+    int i = static_cast<int>(fixed_cols_[k].size());
+    for (int r : exact_rows_[k]) {
+      const Row& row = rows_[r];
+      shift = 0.0;
+      for (const Entry& e : row.entries)
+        if (e.next) shift += jac_[e.slot] * q.b[e.col];
+      q.c[i++] = shift - rc[r];
+    }
+    for (int r : penalty_rows_[k]) {
+      rowVector(rows_[r], jac_, a, shift);
+      q.h.noalias() -= ((rc[r] - shift) / dc_[r]) * a;
+    }
+  }
+  riccati_.solve(qp_, sol_);
+  dx.setZero(n_);
+  for (int v = 0; v < n_; ++v) {
+    if (fixed_[v]) continue;
+    const StageSolution& s = sol_[layout_.stage[v]];
+    dx[v] = layout_.is_state[v] ? s.x[local_[v]] : s.u[local_[v]];
+  }
+  dy.setZero(m_);
+  Eigen::VectorXd z;
+  for (int k = 0; k <= N_; ++k) {
+    const StageSolution& s = sol_[k];
+    int i = static_cast<int>(fixed_cols_[k].size());
+    for (int r : exact_rows_[k]) dy[r] = s.eta[i++];
+    if (penalty_rows_[k].empty()) continue;
+    z.resize(s.x.size() + s.u.size());
+    z << s.x, s.u;
+    for (int r : penalty_rows_[k]) {
+      rowVector(rows_[r], jac_, a, shift);
+      dy[r] = (a.dot(z) + shift - rc[r]) / dc_[r];
+    }
+  }
+  // Dynamics multipliers: from the Riccati co-states, then undo the substitution of the coupled rows.
+  for (int k = 0; k < N_; ++k)
+    for (int j = 0; j < nx_[k + 1]; ++j) {
+      const int r = dyn_rows_[k][j];
+      dy[r] = -sol_[k].lambda[j] / diag_[r];
+    }
+  for (int k = 0; k < N_; ++k)
+    for (int r : stage_rows_[k]) {
+      const Row& row = rows_[r];
+      if (row.kind != RowKind::kCoupled) continue;
+      for (const Entry& e : row.entries) {
+        if (!e.next) continue;
+        const int dr = dyn_rows_[k][e.col];
+        dy[dr] -= jac_[e.slot] / diag_[dr] * dy[r];
+      }
+    }
+}
+
+}  // namespace centaur::ocp_solver

@@ -1,0 +1,117 @@
+#pragma once
+// The KKT system of an OCP transcribed by direct multiple shooting, solved stage-wise (riccati.hpp).
+//
+// From the sparsity alone it finds, for every stage k, the dynamics rows (one per component of x_{k+1}: a row
+// with a single entry on x_{k+1}, the rest on stage k) and classifies the other rows and Hessian entries:
+//   - local: everything on stage k (state or control) -> a stage row / a block of H_k;
+//   - coupled to the next state (e.g. "the foot did not move since the last node": x_k and x_{k+1}): the
+//     linearized dynamics are substituted for x_{k+1}, which makes it a row of stage k (a row operation on the
+//     KKT system; multipliers are transformed back);
+//   - anything else reaching back (a rate cost between u_k and u_{k+1}, a periodicity row between x_0 and x_N):
+//     the earlier variables are carried forward as extra states (w_{k+1} = copy), so that the term becomes local
+//     to the later stage.
+// Fixed variables become unit rows. Inequality rows (d_c > 0) are penalties added to the stage Hessians; equality
+// rows are exact, or penalties under a dual regularization (d_c > 0), except the dynamics, which stay exact.
+// The structure is analysed once; factor() scatters the values into preallocated stage blocks.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ocp_solver/kkt_system.hpp"
+#include "ocp_solver/riccati.hpp"
+
+namespace centaur::ocp_solver {
+
+/// Which stage each variable belongs to (from the OCP's layout).
+struct StageLayout {
+  int num_stages = 0;           ///< N + 1 (stages 0..N)
+  std::vector<int> stage;       ///< per variable
+  std::vector<char> is_state;   ///< per variable: state of its stage (else a control)
+};
+
+/// The structure does not fit the stage-wise solver (e.g. a state without a dynamics row).
+class StructureError : public std::runtime_error {
+ public:
+  explicit StructureError(const std::string& what) : std::runtime_error(what) {}
+};
+
+class StageKktSolver final : public KktSolver {
+ public:
+  /// fixed: per variable; equality: per row (lower bound == upper bound). Throws StructureError.
+  StageKktSolver(const SparsePattern& pattern, const StageLayout& layout, const std::vector<char>& fixed,
+                 const std::vector<char>& equality, RiccatiSolver::Options options = {});
+
+  KktStatus factor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
+                   const Eigen::VectorXd& dc) override;
+  /// Solves, then refines on the residual of the whole system (at most `max_refinement` extra solves) until the
+  /// relative residual is below 1e-12: rows whose controls were nearly dependent are passed to the previous
+  /// stage by the recursion, which leaves an error of the size of the pivot threshold.
+  void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy) override;
+  /// Relative residual of the last solve (after refinement).
+  double lastResidual() const { return last_residual_; }
+  int max_refinement = 3;
+  const std::vector<char>& alwaysExactRows() const override { return dynamics_row_; }
+  Inertia inertia() const override { return riccati_.inertia(); }
+
+  /// Sizes of the stage QP (augmented states) for reports: states, carried copies, controls of stage k.
+  int stateSize(int k) const { return nx_[k]; }
+  int carriedSize(int k) const { return static_cast<int>(carried_[k].size()); }
+  int controlSize(int k) const { return nu_[k]; }
+
+ private:
+  enum class RowKind { kDynamics, kLocal, kCoupled };
+  struct Entry {        // one Jacobian nonzero's destination
+    int slot;           // index into the Jacobian values
+    int col;            // column in the owner stage's z (augmented), or in x_{k+1} for `next`
+    bool next;          // on x_{k+1} (coupled rows and the dynamics' diagonal)
+  };
+  struct Row {
+    RowKind kind = RowKind::kLocal;
+    int stage = 0;      // owner stage
+    int comp = -1;      // dynamics: component of x_{k+1}
+    std::vector<Entry> entries;
+  };
+  struct HessEntry {
+    int slot, stage, r, c;
+  };
+
+  int colOf(int stage, int var) const;  // column of a variable in a stage's augmented z (-1 if absent)
+  void analyzeRows(const SparsePattern& p, const std::vector<char>& equality);
+  void analyzeCarried(const SparsePattern& p);
+  void rowVector(const Row& row, const double* jac, Eigen::VectorXd& a, double& rhs_shift) const;
+  void solveOnce(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy);
+  /// r = rhs - K [dx; dy]; returns the scale max(|rhs|, |K| |[dx; dy]|) for the relative residual.
+  double residual(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, const Eigen::VectorXd& dx,
+                  const Eigen::VectorXd& dy, Eigen::VectorXd& res_x, Eigen::VectorXd& res_c) const;
+
+  int n_ = 0, m_ = 0, N_ = 0;
+  StageLayout layout_;
+  std::vector<int> local_;                 // index of a variable within x_k or u_k
+  std::vector<char> fixed_;
+  std::vector<char> equality_;
+  std::vector<char> dynamics_row_;         // per NLP row
+  std::vector<int> nx_, nu_;               // original sizes per stage
+  std::vector<std::vector<int>> carried_;  // per stage: variables carried as extra states
+  std::vector<std::vector<int>> carry_src_;  // per stage k+1: column in z_k of each carried variable
+  std::vector<Row> rows_;
+  std::vector<std::vector<int>> dyn_rows_;   // per stage k < N: NLP row of each x_{k+1} component
+  std::vector<std::vector<int>> stage_rows_; // per stage: local and coupled NLP rows owned by it
+  std::vector<HessEntry> hess_entries_;
+  std::vector<std::vector<int>> fixed_cols_; // per stage: columns of fixed variables (unit rows)
+
+  // values of the last factor()
+  const SparsePattern pattern_;
+  const double* jac_ = nullptr;
+  const double* hess_ = nullptr;
+  Eigen::VectorXd dx_diag_, dc_;
+  double last_residual_ = 0.0;
+  Eigen::VectorXd res_x_, res_c_, ddx_, ddy_;
+  std::vector<std::vector<int>> exact_rows_;  // per stage: NLP rows kept as rows of C_k
+  std::vector<std::vector<int>> penalty_rows_;
+  std::vector<StageQp> qp_;
+  std::vector<StageSolution> sol_;
+  RiccatiSolver riccati_;
+  Eigen::VectorXd diag_;                      // dynamics row scale d (entry on x_{k+1})
+};
+
+}  // namespace centaur::ocp_solver

@@ -1,0 +1,283 @@
+// ctest-labels: unit
+// The structured (Riccati) factorization against dense linear algebra on random stage-structured KKT systems:
+// the solution satisfies the whole KKT system to 1e-10 relative residual (mixed, pure-state and pure-control
+// rows, fixed or free initial state, stage-varying sizes, the planner's sizes), and the inertia it reports is
+// the one a dense eigen-decomposition of the KKT matrix finds: positive definite reduced Hessians, indefinite
+// ones, and dependent rows (a rank-deficient constraint Jacobian: zero eigenvalues, status kSingular).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <random>
+
+#include "ocp_solver/riccati.hpp"
+
+using namespace centaur::ocp_solver;
+
+namespace {
+
+struct Dense {
+  Eigen::MatrixXd K;
+  Eigen::VectorXd rhs;
+  int n = 0, m = 0;
+};
+
+// [H J'; J 0] [z; y] = -[h; c] with z = [x_0, u_0, ..., x_N] and y = [eta_0, lambda_0, eta_1, lambda_1, ...].
+Dense assemble(const std::vector<StageQp>& qp) {
+  const int N = static_cast<int>(qp.size()) - 1;
+  std::vector<int> off(N + 2, 0);
+  int m = 0;
+  for (int k = 0; k <= N; ++k) {
+    off[k + 1] = off[k] + qp[k].nx + qp[k].nu;
+    m += static_cast<int>(qp[k].C.rows()) + (k < N ? qp[k + 1].nx : 0);
+  }
+  Dense d;
+  d.n = off[N + 1];
+  d.m = m;
+  d.K.setZero(d.n + m, d.n + m);
+  d.rhs.setZero(d.n + m);
+  int row = d.n;
+  for (int k = 0; k <= N; ++k) {
+    const StageQp& s = qp[k];
+    const int n = s.nx + s.nu;
+    d.K.block(off[k], off[k], n, n) = s.H;
+    d.rhs.segment(off[k], n) = -s.h;
+    const int mk = static_cast<int>(s.C.rows());
+    d.K.block(row, off[k], mk, n) = s.C;
+    d.rhs.segment(row, mk) = -s.c;
+    row += mk;
+    if (k < N) {
+      const int nx1 = qp[k + 1].nx;
+      d.K.block(row, off[k], nx1, s.nx) = s.A;
+      d.K.block(row, off[k] + s.nx, nx1, s.nu) = s.B;
+      d.K.block(row, off[k + 1], nx1, nx1) = -Eigen::MatrixXd::Identity(nx1, nx1);
+      d.rhs.segment(row, nx1) = -s.b;
+      row += nx1;
+    }
+  }
+  d.K.bottomLeftCorner(m, d.n) = d.K.bottomLeftCorner(m, d.n);
+  d.K.topRightCorner(d.n, m) = d.K.bottomLeftCorner(m, d.n).transpose();
+  return d;
+}
+
+Eigen::VectorXd flatten(const std::vector<StageQp>& qp, const std::vector<StageSolution>& sol) {
+  const int N = static_cast<int>(qp.size()) - 1;
+  std::vector<double> z, y;
+  for (int k = 0; k <= N; ++k) {
+    for (int i = 0; i < sol[k].x.size(); ++i) z.push_back(sol[k].x[i]);
+    for (int i = 0; i < sol[k].u.size(); ++i) z.push_back(sol[k].u[i]);
+    for (int i = 0; i < sol[k].eta.size(); ++i) y.push_back(sol[k].eta[i]);
+    for (int i = 0; i < sol[k].lambda.size(); ++i) y.push_back(sol[k].lambda[i]);
+  }
+  z.insert(z.end(), y.begin(), y.end());
+  return Eigen::Map<Eigen::VectorXd>(z.data(), static_cast<Eigen::Index>(z.size()));
+}
+
+double relativeResidual(const Dense& d, const Eigen::VectorXd& v) {
+  const double r = (d.K * v - d.rhs).cwiseAbs().maxCoeff();
+  const double scale = d.K.cwiseAbs().maxCoeff() * v.cwiseAbs().maxCoeff() + d.rhs.cwiseAbs().maxCoeff();
+  return r / scale;
+}
+
+Inertia denseInertia(const Eigen::MatrixXd& K) {
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues();
+  const double tol = 1e-9 * std::max(1.0, ev.cwiseAbs().maxCoeff());
+  Inertia in;
+  for (int i = 0; i < ev.size(); ++i) (std::abs(ev[i]) <= tol ? in.zero : ev[i] > 0 ? in.positive : in.negative)++;
+  return in;
+}
+
+enum class Curvature { kConvex, kIndefinite };
+
+struct Gen {
+  std::mt19937 rng;
+  explicit Gen(unsigned seed) : rng(seed) {}
+  double u() { return std::uniform_real_distribution<double>(-1.0, 1.0)(rng); }
+  int i(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+  Eigen::MatrixXd mat(int r, int c) {
+    Eigen::MatrixXd a(r, c);
+    for (int j = 0; j < c; ++j)
+      for (int k = 0; k < r; ++k) a(k, j) = u();
+    return a;
+  }
+  Eigen::VectorXd vec(int n) { return mat(n, 1); }
+};
+
+// Random stage QP: each stage has mixed rows, pure-state rows (not at stage 0 unless x_0 is fixed) and
+// pure-control rows; the row count stays below what the controls of the stage can absorb.
+std::vector<StageQp> randomQp(Gen& g, int N, Curvature curv, bool fix_x0, int nx_max = 5, int nu_max = 4) {
+  std::vector<int> nx(N + 1), nu(N + 1);
+  for (int k = 0; k <= N; ++k) {
+    nx[k] = g.i(1, nx_max);
+    nu[k] = k < N ? g.i(1, nu_max) : 0;
+  }
+  std::vector<StageQp> qp(N + 1);
+  for (int k = 0; k <= N; ++k) {
+    const int n = nx[k] + nu[k];
+    const int mixed = k < N ? g.i(0, std::max(0, nu[k] - 2)) : 0;
+    const int state = (k > 0) ? g.i(0, std::min(1, nx[k])) : 0;
+    const int control = k < N ? g.i(0, 1) : 0;
+    const int fixed = (k == 0 && fix_x0) ? nx[0] : 0;
+    const int m = mixed + state + control + fixed;
+    StageQp& s = qp[k];
+    s.resize(nx[k], nu[k], m, k < N ? nx[k + 1] : 0);
+    Eigen::MatrixXd R = g.mat(n, n);
+    s.H = curv == Curvature::kConvex ? Eigen::MatrixXd(R * R.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n))
+                                     : Eigen::MatrixXd(R + R.transpose());
+    s.h = g.vec(n);
+    int row = 0;
+    for (int j = 0; j < mixed; ++j) s.C.row(row++) = g.mat(1, n);
+    for (int j = 0; j < state; ++j) s.C.row(row++).head(nx[k]) = g.mat(1, nx[k]);
+    for (int j = 0; j < control; ++j) s.C.row(row++).tail(nu[k]) = g.mat(1, nu[k]);
+    for (int j = 0; j < fixed; ++j) s.C(row++, j) = 1.0;
+    s.c = g.vec(m);
+    if (k < N) {
+      s.A = g.mat(nx[k + 1], nx[k]);
+      s.B = g.mat(nx[k + 1], nu[k]);
+      s.b = g.vec(nx[k + 1]);
+    }
+  }
+  return qp;
+}
+
+// A random instance whose KKT matrix is nonsingular (too many pure-state rows can over-determine x_0).
+std::vector<StageQp> nonsingularQp(Gen& g, int N, Curvature curv, bool fix_x0, int nx_max = 5, int nu_max = 4) {
+  for (;;) {
+    auto qp = randomQp(g, N, curv, fix_x0, nx_max, nu_max);
+    if (denseInertia(assemble(qp).K).zero == 0) return qp;
+  }
+}
+
+}  // namespace
+
+TEST(Riccati, SolvesRandomConvexStageSystemsToTheDenseResidual) {
+  for (unsigned seed = 0; seed < 60; ++seed) {
+    Gen g(seed);
+    const int N = 1 + seed % 12;
+    const bool fix = seed % 2 == 1;
+    const auto qp = nonsingularQp(g, N, Curvature::kConvex, fix);
+    const Dense d = assemble(qp);
+    RiccatiSolver solver;
+    ASSERT_EQ(solver.factor(qp), RiccatiSolver::Status::kOk) << "seed " << seed;
+    EXPECT_EQ(solver.inertia().positive, d.n) << "seed " << seed;
+    EXPECT_EQ(solver.inertia().negative, d.m) << "seed " << seed;
+    EXPECT_EQ(solver.inertia().zero, 0) << "seed " << seed;
+    std::vector<StageSolution> sol;
+    solver.solve(qp, sol);
+    EXPECT_LT(relativeResidual(d, flatten(qp, sol)), 1e-10) << "seed " << seed;
+  }
+}
+
+TEST(Riccati, InertiaMatchesTheDenseEigenDecomposition) {
+  int wrong = 0, right = 0;
+  for (unsigned seed = 100; seed < 220; ++seed) {
+    Gen g(seed);
+    const auto qp = nonsingularQp(g, 1 + seed % 6, Curvature::kIndefinite, seed % 3 == 0, 4, 3);
+    const Dense d = assemble(qp);
+    const Inertia ref = denseInertia(d.K);
+    RiccatiSolver full(RiccatiSolver::Options{1e-11, true});
+    full.factor(qp);
+    EXPECT_EQ(full.inertia().positive, ref.positive) << "seed " << seed;
+    EXPECT_EQ(full.inertia().negative, ref.negative) << "seed " << seed;
+    EXPECT_EQ(full.inertia().zero, 0) << "seed " << seed;
+    // The default mode stops at the first indefinite reduced Hessian: it must say "wrong" exactly when the
+    // KKT matrix does not have the inertia (n, m, 0).
+    RiccatiSolver fast;
+    const bool correct = ref.positive == d.n && ref.negative == d.m;
+    EXPECT_EQ(fast.factor(qp) == RiccatiSolver::Status::kOk, correct) << "seed " << seed;
+    (correct ? right : wrong)++;
+    // With the full inertia the solve still works (the elimination is a congruence with nonsingular pivots).
+    std::vector<StageSolution> sol;
+    full.solve(qp, sol);
+    EXPECT_LT(relativeResidual(d, flatten(qp, sol)), 1e-8) << "seed " << seed;
+  }
+  EXPECT_GT(wrong, 10);  // both outcomes were exercised
+  EXPECT_GT(right, 5);
+}
+
+TEST(Riccati, DependentRowsAreZeroEigenvaluesAndConsistentSystemsStillSolve) {
+  for (unsigned seed = 300; seed < 340; ++seed) {
+    Gen g(seed);
+    const int N = 2 + seed % 5;
+    auto qp = nonsingularQp(g, N, Curvature::kConvex, false);
+    // Dependent rows: at a stage, a combination of two of its rows (or a copy of one); at another stage a
+    // pure-state row that repeats, through the dynamics, a pure-state row of the next stage.
+    int dependent = 0;
+    const int k = g.i(0, N);
+    StageQp& s = qp[k];
+    const int n = s.nx + s.nu;
+    const int m = static_cast<int>(s.C.rows());
+    Eigen::RowVectorXd row = g.mat(1, n);
+    double rhs = g.u();
+    if (m >= 2) {
+      row = 0.7 * s.C.row(0) - 1.3 * s.C.row(1);
+      rhs = 0.7 * s.c[0] - 1.3 * s.c[1];
+    } else if (m == 1) {
+      row = 2.0 * s.C.row(0);
+      rhs = 2.0 * s.c[0];
+    }
+    if (m >= 1) {
+      s.C.conservativeResize(m + 1, n);
+      s.c.conservativeResize(m + 1);
+      s.C.row(m) = row;
+      s.c[m] = rhs;
+      ++dependent;
+    }
+    // A copy (times -3) of a pure-state row on the terminal state: dependent through the whole recursion.
+    StageQp& t = qp[N];
+    const int mt = static_cast<int>(t.C.rows());
+    if (mt >= 1 && k != N) {
+      t.C.conservativeResize(mt + 1, t.nx);
+      t.c.conservativeResize(mt + 1);
+      t.C.row(mt) = -3.0 * t.C.row(0);
+      t.c[mt] = -3.0 * t.c[0];
+      ++dependent;
+    }
+    if (dependent == 0) continue;
+    const Dense d = assemble(qp);
+    const Inertia ref = denseInertia(d.K);
+    RiccatiSolver solver;
+    ASSERT_EQ(solver.factor(qp), RiccatiSolver::Status::kSingular) << "seed " << seed;
+    EXPECT_EQ(solver.inertia().zero, dependent) << "seed " << seed;
+    EXPECT_EQ(solver.inertia().zero, ref.zero) << "seed " << seed;
+    EXPECT_EQ(solver.inertia().positive, ref.positive) << "seed " << seed;
+    EXPECT_EQ(solver.inertia().negative, ref.negative) << "seed " << seed;
+    std::vector<StageSolution> sol;
+    solver.solve(qp, sol);
+    EXPECT_LT(relativeResidual(d, flatten(qp, sol)), 1e-10) << "seed " << seed;
+  }
+}
+
+TEST(Riccati, PlannerSizedSystem) {
+  // The squat jump's sizes: 30 stages, 55 states (37 plus 18 carried controls), 31 controls, 6 mixed rows, 12
+  // pure-state rows (pinned feet) on most stages, a fixed initial state.
+  Gen g(7);
+  const int N = 30;
+  std::vector<StageQp> qp(N + 1);
+  for (int k = 0; k <= N; ++k) {
+    const int nx = 55, nu = k < N ? 31 : 0;
+    const int mixed = k < N ? 6 : 0, state = (k > 0 && (k <= 11 || k >= 20)) ? 12 : 0, fixed = k == 0 ? nx : 0;
+    StageQp& s = qp[k];
+    s.resize(nx, nu, mixed + state + fixed, k < N ? 55 : 0);
+    const Eigen::MatrixXd R = g.mat(nx + nu, nx + nu);
+    s.H = R * R.transpose() / (nx + nu) + 0.01 * Eigen::MatrixXd::Identity(nx + nu, nx + nu);
+    s.h = g.vec(nx + nu);
+    for (int j = 0; j < mixed; ++j) s.C.row(j) = g.mat(1, nx + nu);
+    for (int j = 0; j < state; ++j) s.C.row(mixed + j).head(nx) = g.mat(1, nx);
+    for (int j = 0; j < fixed; ++j) s.C(mixed + state + j, j) = 1.0;
+    s.c = g.vec(static_cast<int>(s.C.rows()));
+    if (k < N) {
+      s.A = Eigen::MatrixXd::Identity(nx, nx) + 0.1 * g.mat(nx, nx);
+      s.B = 0.1 * g.mat(nx, nu);
+      s.b = g.vec(nx);
+    }
+  }
+  const Dense d = assemble(qp);
+  RiccatiSolver solver;
+  ASSERT_EQ(solver.factor(qp), RiccatiSolver::Status::kOk);
+  EXPECT_EQ(solver.inertia().positive, d.n);
+  EXPECT_EQ(solver.inertia().negative, d.m);
+  std::vector<StageSolution> sol;
+  solver.solve(qp, sol);
+  EXPECT_LT(relativeResidual(d, flatten(qp, sol)), 1e-10);
+}
