@@ -3,6 +3,8 @@
 // all rows, solved by LU; the inertia from an eigen-decomposition.
 #include <Eigen/Dense>
 
+#include <memory>
+
 #include "ocp_solver/kkt_system.hpp"
 
 namespace centaur_test {
@@ -47,19 +49,57 @@ struct DenseKkt {
     Eigen::VectorXd rhs(nf + m);
     for (int i = 0; i < nf; ++i) rhs[i] = rx[free_vars[i]];
     rhs.tail(m) = rc;
-    const Eigen::VectorXd s = K.fullPivLu().solve(rhs);
+    const Eigen::VectorXd s = K.partialPivLu().solve(rhs);
     dx.setZero(rx.size());
     for (int i = 0; i < nf; ++i) dx[free_vars[i]] = s[i];
     dy = s.tail(m);
   }
 
+  /// Counted on S K S with S = diag(1 / sqrt(max_j |K_ij|)) (the same inertia by Sylvester's law), so that a
+  /// large barrier diagonal does not make the small eigenvalues of the other rows look like zeros.
   Inertia inertia() const {
-    const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues();
+    Eigen::VectorXd s = Eigen::VectorXd::Ones(K.rows());
+    for (int i = 0; i < K.rows(); ++i) {
+      const double a = K.row(i).cwiseAbs().maxCoeff();
+      if (a > 0.0) s[i] = 1.0 / std::sqrt(a);
+    }
+    const Eigen::MatrixXd Ks = s.asDiagonal() * K * s.asDiagonal();
+    const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Ks).eigenvalues();
     const double tol = 1e-9 * std::max(1.0, ev.cwiseAbs().maxCoeff());
     Inertia in;
     for (int i = 0; i < ev.size(); ++i) (std::abs(ev[i]) <= tol ? in.zero : ev[i] > 0 ? in.positive : in.negative)++;
     return in;
   }
+};
+
+}  // namespace centaur_test
+
+namespace centaur_test {
+
+/// KktSolver on the dense matrix (tests of the interior-point method on small NLPs).
+class DenseKktSolver final : public centaur::ocp_solver::KktSolver {
+ public:
+  DenseKktSolver(const SparsePattern& p, std::vector<char> fixed) : p_(p), fixed_(std::move(fixed)) {}
+  centaur::ocp_solver::KktStatus factor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
+                                        const Eigen::VectorXd& dc) override {
+    kkt_ = std::make_unique<DenseKkt>(p_, fixed_, exact_, hess, jac, dx, dc);
+    const Inertia in = kkt_->inertia();
+    last_ = in;
+    if (in.zero > 0) return centaur::ocp_solver::KktStatus::kSingular;
+    const bool ok = in.positive == static_cast<int>(kkt_->free_vars.size()) && in.negative == p_.m;
+    return ok ? centaur::ocp_solver::KktStatus::kOk : centaur::ocp_solver::KktStatus::kWrongInertia;
+  }
+  void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy) override {
+    kkt_->solve(rx, rc, dx, dy);
+  }
+  const std::vector<char>& alwaysExactRows() const override { return exact_; }
+  Inertia inertia() const override { return last_; }
+
+ private:
+  SparsePattern p_;
+  std::vector<char> fixed_, exact_;
+  std::unique_ptr<DenseKkt> kkt_;
+  Inertia last_;
 };
 
 }  // namespace centaur_test

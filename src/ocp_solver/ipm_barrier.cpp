@@ -1,0 +1,185 @@
+// The barrier parameter of the interior-point method.
+//   monotone: Fiacco-McCormick, mu decreases when the barrier problem is solved to kappa_eps * mu.
+//   adaptive (Ipopt's default strategy, Nocedal, Waechter & Waltz 2009): in "free mode" mu is chosen every
+//     iteration: the affine-scaling step (mu = 0) and the centring step (mu = average complementarity) are
+//     solved with the same factorization, and sigma = mu / average complementarity minimizes a quality function
+//     (the linearized KKT error after the step, fraction to the boundary included) by golden-section search
+//     in log sigma; the step for that mu is their combination (the right-hand side is affine in mu). Free-mode
+//     iterates must make progress in a filter of (constraint violation, objective); otherwise the method falls
+//     back to the monotone mode, from 0.8 x the average complementarity, until an iterate is acceptable again.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ocp_solver/ipm_state.hpp"
+
+namespace centaur::ocp_solver::detail {
+
+namespace {
+constexpr double kKappaEps = 10.0;  // barrier subproblem tolerance factor
+constexpr double kKappaMu = 0.2, kThetaMu = 1.5, kTauMin = 0.99;
+constexpr double kSigmaMax = 100.0, kMuMin = 1e-11, kMuMaxFact = 1e3, kMonotoneInitFactor = 0.8;
+constexpr double kFilterMarginFact = 1e-5;
+constexpr int kGoldenSteps = 12;
+}  // namespace
+
+double Ipm::averageComplementarity() const {
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (has_xl_[i]) sum += (x_[i] - xl_[i]) * zl_[i], ++count;
+    if (has_xu_[i]) sum += (xu_[i] - x_[i]) * zu_[i], ++count;
+  }
+  for (int r = 0; r < m_; ++r) {
+    if (has_gl_[r]) sum += (s_[r] - gl_[r]) * vl_[r], ++count;
+    if (has_gu_[r]) sum += (gu_[r] - s_[r]) * vu_[r], ++count;
+  }
+  return count ? sum / count : 0.0;
+}
+
+void Ipm::monotoneUpdate() {
+  const double mu_min = adaptive_ ? kMuMin : opt_.tol / 10.0;
+  bool changed = false;
+  while (mu_ > mu_min && (tiny_step_ || optimalityError(mu_, false) <= kKappaEps * mu_)) {
+    mu_ = std::max(mu_min, std::min(kKappaMu * mu_, std::pow(mu_, kThetaMu)));
+    tau_ = std::max(kTauMin, 1.0 - mu_);
+    changed = true;
+    tiny_step_ = false;
+  }
+  tiny_step_ = false;
+  if (changed) filter_.reset(filter_.thetaMax());
+}
+
+bool Ipm::progressAcceptable() const {
+  const double th = theta(g_, s_);
+  const double margin = kFilterMarginFact * std::min(1.0, std::max(std::abs(f_), th));
+  return progress_filter_.acceptable(th + margin, f_ + margin);
+}
+
+void Ipm::rememberProgress() {
+  const double th = theta(g_, s_);
+  const double margin = kFilterMarginFact * std::min(1.0, std::max(std::abs(f_), th));
+  progress_filter_.add(th - margin, f_ - margin);
+}
+
+// Called before the direction: monotone updates, or the adaptive mode switches.
+void Ipm::updateBarrier() {
+  if (!adaptive_ || averageComplementarity() <= 0.0) {
+    adaptive_ = false;
+    monotoneUpdate();
+    return;
+  }
+  if (mu_max_ == 0.0) mu_max_ = kMuMaxFact * averageComplementarity();
+  if (free_mode_) {
+    if (stats_.iterations > 0 && !progressAcceptable()) {  // no progress: fixed (monotone) mode
+      free_mode_ = false;
+      ++stats_.mode_switches;
+      mu_ = std::max(kMuMin, std::min(mu_max_, kMonotoneInitFactor * averageComplementarity()));
+      tau_ = std::max(kTauMin, 1.0 - mu_);
+      filter_.reset(filter_.thetaMax());
+      return;
+    }
+    rememberProgress();
+    return;
+  }
+  if (progressAcceptable()) {  // progress again: back to free mode
+    free_mode_ = true;
+    rememberProgress();
+    return;
+  }
+  monotoneUpdate();
+}
+
+void Ipm::combine(const Direction& a, const Direction& c, double sigma, Direction& d) const {
+  d.x = a.x + sigma * (c.x - a.x);
+  d.s = a.s + sigma * (c.s - a.s);
+  d.y = a.y + sigma * (c.y - a.y);
+  d.zl = a.zl + sigma * (c.zl - a.zl);
+  d.zu = a.zu + sigma * (c.zu - a.zu);
+  d.vl = a.vl + sigma * (c.vl - a.vl);
+  d.vu = a.vu + sigma * (c.vu - a.vu);
+}
+
+// Ipopt's quality function (2-norm squared, each part divided by its size) of the linearized KKT error after the
+// step for sigma with the fraction-to-the-boundary step sizes.
+double Ipm::qualityFunction(const Direction& a, const Direction& c, double sigma, double tau) const {
+  Direction d;
+  combine(a, c, sigma, d);
+  const double ap = std::min(maxStep(x_, d.x, xl_, xu_, has_xl_, has_xu_, tau),
+                             maxStep(s_, d.s, gl_, gu_, has_gl_, has_gu_, tau));
+  const double ad = maxDualStep(d, tau);
+  const SparsePattern& p = nlp_.pattern();
+  Vec rd = grad_ - zl_ + zu_;
+  for (std::size_t t = 0; t < p.jac_rows.size(); ++t) rd[p.jac_cols[t]] += jac_[t] * y_[p.jac_rows[t]];
+  double dual = 0.0, compl_sq = 0.0;
+  int nd = 0, nc = 0;
+  for (int i = 0; i < n_; ++i) {
+    if (fixed_[i]) continue;
+    dual += rd[i] * rd[i], ++nd;
+    if (has_xl_[i]) {
+      const double v = (x_[i] + ap * d.x[i] - xl_[i]) * (zl_[i] + ad * d.zl[i]);
+      compl_sq += v * v, ++nc;
+    }
+    if (has_xu_[i]) {
+      const double v = (xu_[i] - x_[i] - ap * d.x[i]) * (zu_[i] + ad * d.zu[i]);
+      compl_sq += v * v, ++nc;
+    }
+  }
+  for (int r = 0; r < m_; ++r) {
+    if (!ineq_[r]) continue;
+    const double rs = -y_[r] - vl_[r] + vu_[r];
+    dual += rs * rs, ++nd;
+    if (has_gl_[r]) {
+      const double v = (s_[r] + ap * d.s[r] - gl_[r]) * (vl_[r] + ad * d.vl[r]);
+      compl_sq += v * v, ++nc;
+    }
+    if (has_gu_[r]) {
+      const double v = (gu_[r] - s_[r] - ap * d.s[r]) * (vu_[r] + ad * d.vu[r]);
+      compl_sq += v * v, ++nc;
+    }
+  }
+  const double primal = m_ ? rp_.squaredNorm() / m_ : 0.0;
+  return (1.0 - ad) * (1.0 - ad) * dual / std::max(1, nd) + (1.0 - ap) * (1.0 - ap) * primal +
+         compl_sq / std::max(1, nc);
+}
+
+bool Ipm::adaptiveDirection() {
+  const double avg = averageComplementarity();
+  const double mu_saved = mu_;
+  mu_ = 0.0;
+  solveAndRecover(rp_, aff_);
+  mu_ = avg;
+  solveAndRecover(rp_, cen_);
+  mu_ = mu_saved;
+  if (!aff_.x.allFinite() || !cen_.x.allFinite()) return false;
+  // Golden-section search of the quality function over log sigma.
+  const double lo0 = std::log(std::max(kMuMin / avg, 1e-9)), hi0 = std::log(std::min(kSigmaMax, mu_max_ / avg));
+  double lo = lo0, hi = std::max(lo0, hi0);
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+  double qa = qualityFunction(aff_, cen_, std::exp(a), kTauMin), qb = qualityFunction(aff_, cen_, std::exp(b), kTauMin);
+  for (int it = 0; it < kGoldenSteps; ++it) {
+    if (qa < qb) {
+      hi = b, b = a, qb = qa;
+      a = hi - g * (hi - lo);
+      qa = qualityFunction(aff_, cen_, std::exp(a), kTauMin);
+    } else {
+      lo = a, a = b, qa = qb;
+      b = lo + g * (hi - lo);
+      qb = qualityFunction(aff_, cen_, std::exp(b), kTauMin);
+    }
+  }
+  double sigma = std::exp(qa < qb ? a : b);
+  // the interval ends may be better (the function is not unimodal in general)
+  const double q_best = std::min(qa, qb);
+  if (qualityFunction(aff_, cen_, std::exp(lo0), kTauMin) < q_best) sigma = std::exp(lo0);
+  else if (hi0 > lo0 && qualityFunction(aff_, cen_, std::exp(hi0), kTauMin) < q_best) sigma = std::exp(hi0);
+  mu_ = std::clamp(sigma * avg, kMuMin, mu_max_);
+  sigma = mu_ / avg;
+  tau_ = std::max(kTauMin, 1.0 - mu_);
+  combine(aff_, cen_, sigma, d_);
+  filter_.reset(filter_.thetaMax());  // the barrier problem changed
+  return d_.x.allFinite() && d_.y.allFinite();
+}
+
+}  // namespace centaur::ocp_solver::detail

@@ -1,0 +1,113 @@
+#pragma once
+// Internal to the interior-point method (interior_point.cpp, ipm_direction.cpp, ipm_line_search.cpp): the
+// problem in scaled variables, the primal-dual iterate and the search direction.
+#include <chrono>
+
+#include "ocp_solver/interior_point.hpp"
+
+namespace centaur::ocp_solver::detail {
+
+using Vec = Eigen::VectorXd;
+
+struct Direction {
+  Vec x, s, y, zl, zu, vl, vu;
+};
+
+class Ipm {
+ public:
+  Ipm(Nlp& nlp, KktSolver& kkt, const IpmOptions& opt, const WarmStart* warm);
+  IpmResult run();
+
+ private:
+  // problem
+  void setupProblem();
+  bool evalFunctions(const Vec& x, double& f, Vec& g);
+  bool evalDerivatives();
+  Vec unscaled(const Vec& x) const { return x.cwiseProduct(D_); }
+  // iterate
+  void initialize();
+  void pushIntoBounds(Vec& v, const Vec& lo, const Vec& hi, const std::vector<char>& has_lo,
+                      const std::vector<char>& has_hi, double push, double frac) const;
+  void leastSquaresMultipliers();
+  void primalResidual(const Vec& g, const Vec& s, Vec& rp) const;
+  double theta(const Vec& g, const Vec& s) const;
+  double barrierObjective(double f, const Vec& x, const Vec& s) const;
+  void barrierGradient(Vec& gx, Vec& gs) const;
+  double optimalityError(double mu, bool unscaled_check, double* dual = nullptr, double* primal = nullptr,
+                         double* compl_out = nullptr) const;
+  void safeguardMultipliers();
+  // barrier parameter (ipm_barrier.cpp)
+  void updateBarrier();
+  void monotoneUpdate();
+  bool adaptiveDirection();
+  double averageComplementarity() const;
+  double qualityFunction(const Direction& aff, const Direction& cen, double sigma, double tau) const;
+  void combine(const Direction& aff, const Direction& cen, double sigma, Direction& d) const;
+  bool progressAcceptable() const;
+  void rememberProgress();
+  // direction (ipm_direction.cpp)
+  bool computeDirection();
+  bool factorWithCorrection();
+  void assembleRhs(const Vec& rp, Direction& d);
+  void solveAndRecover(const Vec& rp, Direction& d);
+  // line search (ipm_line_search.cpp)
+  bool lineSearch();
+  double maxStep(const Vec& v, const Vec& dv, const Vec& lo, const Vec& hi, const std::vector<char>& has_lo,
+                 const std::vector<char>& has_hi, double tau) const;
+  double maxDualStep(const Direction& d, double tau) const;
+  /// 0: rejected, 1: accepted by the Armijo condition (f-type), 2: by sufficient decrease of theta or phi (h-type).
+  int acceptance(double theta_t, double phi_t, double alpha, double gpd, double theta0, double phi0) const;
+  bool trialPoint(const Direction& d, double alpha);  // x_trial_, s_trial_, f_trial_, g_trial_
+  bool secondOrderCorrection(double alpha, double gpd, double theta0, double phi0, double theta_t);
+  void acceptStep(const Direction& d, double alpha_primal, double alpha_dual);
+  bool restoration();
+  void printIteration(char mode) const;
+  double elapsed() const;
+
+  Nlp& nlp_;
+  KktSolver& kkt_;
+  IpmOptions opt_;
+  const WarmStart* warm_;
+  int n_ = 0, m_ = 0;
+  Vec D_;  // variable scale
+  Vec xl_, xu_, gl_, gu_;
+  std::vector<char> fixed_, has_xl_, has_xu_, ineq_, has_gl_, has_gu_;
+  std::vector<double> jac_scale_, hess_scale_;
+
+  // iterate (scaled)
+  Vec x_, s_, y_, zl_, zu_, vl_, vu_;
+  double f_ = 0.0;
+  Vec g_, grad_, rp_;
+  std::vector<double> jac_, hess_, zero_hess_;
+  double mu_ = 0.1, tau_ = 0.99;
+  bool tiny_step_ = false;
+
+  // direction and linear algebra
+  Direction d_;
+  Vec dxdiag_, dc_, rx_, rc_, sigma_s_, rho_s_;
+  Vec extra_diag_;                   // restoration: its proximal term
+  const double* hess_in_use_ = nullptr;
+  double delta_w_ = 0.0, delta_w_last_ = 0.0, delta_c_ = 0.0;
+  bool hess_degenerate_ = false;
+  int degen_iters_ = 0;
+
+  // line search
+  Filter filter_;
+  double theta_min_ = 0.0;
+  double alpha_primal_ = 0.0, alpha_dual_ = 0.0;
+  char ls_type_ = ' ';
+  int ls_trials_ = 0;
+  Vec x_trial_, s_trial_, g_trial_;
+  double f_trial_ = 0.0;
+
+  int acceptable_count_ = 0;
+  // adaptive barrier: free mode (mu chosen each iteration by the quality function), fixed mode (monotone)
+  bool adaptive_ = false, free_mode_ = true;
+  Filter progress_filter_;  // (constraint violation, objective) of the accepted free-mode iterates
+  double mu_max_ = 0.0;
+  Direction aff_, cen_;
+  IpmStats stats_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace centaur::ocp_solver::detail

@@ -1,0 +1,228 @@
+// ctest-labels: unit
+// The interior-point method on small NLPs with known solutions (dense KKT solver): Hock-Schittkowski 71
+// (Ipopt's example), a bound-constrained problem whose solution sits on bounds, an equality-constrained
+// nonconvex problem that needs the inertia correction, and failures reported as statuses: an infeasible
+// problem (restoration fails) and an iteration limit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "dense_kkt.hpp"
+#include "ocp_solver/interior_point.hpp"
+
+using namespace centaur::ocp_solver;
+using centaur_test::DenseKktSolver;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// An NLP from lambdas with dense derivatives (pattern: every Jacobian entry, the whole lower triangle).
+struct LambdaNlp : Nlp {
+  int n, m;
+  Eigen::VectorXd xl, xu, gl, gu, x0;
+  std::function<double(const Eigen::VectorXd&)> f;
+  std::function<Eigen::VectorXd(const Eigen::VectorXd&)> g, grad;
+  std::function<Eigen::MatrixXd(const Eigen::VectorXd&)> jac;
+  std::function<Eigen::MatrixXd(const Eigen::VectorXd&, double, const Eigen::VectorXd&)> hess;
+  SparsePattern p;
+  int evaluations = 0;
+  void finalize() {
+    p.n = n;
+    p.m = m;
+    for (int r = 0; r < m; ++r)
+      for (int c = 0; c < n; ++c) p.jac_rows.push_back(r), p.jac_cols.push_back(c);
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c <= r; ++c) p.hess_rows.push_back(r), p.hess_cols.push_back(c);
+  }
+  const SparsePattern& pattern() const override { return p; }
+  void bounds(Eigen::VectorXd& a, Eigen::VectorXd& b, Eigen::VectorXd& c, Eigen::VectorXd& d) const override {
+    a = xl, b = xu, c = gl, d = gu;
+  }
+  Eigen::VectorXd initialPoint() const override { return x0; }
+  bool objective(const Eigen::VectorXd& x, double& v) override {
+    v = f(x);
+    return true;
+  }
+  bool constraints(const Eigen::VectorXd& x, Eigen::VectorXd& v) override {
+    v = g(x);
+    return true;
+  }
+  bool derivatives(const Eigen::VectorXd& x, double s, const Eigen::VectorXd& y, Eigen::VectorXd& gr, double* J,
+                   double* H) override {
+    ++evaluations;
+    gr = grad(x);
+    const Eigen::MatrixXd Jm = jac(x), Hm = hess(x, s, y);
+    int k = 0;
+    for (int r = 0; r < m; ++r)
+      for (int c = 0; c < n; ++c) J[k++] = Jm(r, c);
+    k = 0;
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c <= r; ++c) H[k++] = Hm(r, c);
+    return true;
+  }
+};
+
+IpmResult solve(LambdaNlp& nlp, IpmOptions opt = {}) {
+  std::vector<char> fixed(nlp.n);
+  for (int i = 0; i < nlp.n; ++i) fixed[i] = nlp.xl[i] == nlp.xu[i];
+  DenseKktSolver kkt(nlp.p, fixed);
+  return solveInteriorPoint(nlp, kkt, opt);
+}
+
+LambdaNlp hs071() {
+  LambdaNlp q;
+  q.n = 4;
+  q.m = 2;
+  q.xl = Eigen::VectorXd::Constant(4, 1.0);
+  q.xu = Eigen::VectorXd::Constant(4, 5.0);
+  q.gl = Eigen::Vector2d(25.0, 40.0);
+  q.gu = Eigen::Vector2d(kInf, 40.0);
+  q.x0 = Eigen::Vector4d(1.0, 5.0, 5.0, 1.0);
+  q.f = [](const Eigen::VectorXd& x) { return x[0] * x[3] * (x[0] + x[1] + x[2]) + x[2]; };
+  q.g = [](const Eigen::VectorXd& x) {
+    return Eigen::Vector2d(x[0] * x[1] * x[2] * x[3], x.squaredNorm());
+  };
+  q.grad = [](const Eigen::VectorXd& x) {
+    return Eigen::Vector4d(x[3] * (2 * x[0] + x[1] + x[2]), x[0] * x[3], x[0] * x[3] + 1, x[0] * (x[0] + x[1] + x[2]));
+  };
+  q.jac = [](const Eigen::VectorXd& x) {
+    Eigen::MatrixXd J(2, 4);
+    J << x[1] * x[2] * x[3], x[0] * x[2] * x[3], x[0] * x[1] * x[3], x[0] * x[1] * x[2], 2 * x[0], 2 * x[1], 2 * x[2],
+        2 * x[3];
+    return J;
+  };
+  q.hess = [](const Eigen::VectorXd& x, double s, const Eigen::VectorXd& y) {
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(4, 4);
+    H(0, 0) = s * 2 * x[3];
+    H(1, 0) = s * x[3];
+    H(2, 0) = s * x[3];
+    H(3, 0) = s * (2 * x[0] + x[1] + x[2]);
+    H(3, 1) = s * x[0];
+    H(3, 2) = s * x[0];
+    H(1, 0) += y[0] * x[2] * x[3];
+    H(2, 0) += y[0] * x[1] * x[3];
+    H(3, 0) += y[0] * x[1] * x[2];
+    H(2, 1) += y[0] * x[0] * x[3];
+    H(3, 1) += y[0] * x[0] * x[2];
+    H(3, 2) += y[0] * x[0] * x[1];
+    for (int i = 0; i < 4; ++i) H(i, i) += 2 * y[1];
+    return Eigen::MatrixXd(H.selfadjointView<Eigen::Lower>());
+  };
+  q.finalize();
+  return q;
+}
+
+}  // namespace
+
+TEST(InteriorPoint, Hs071ReachesTheKnownOptimum) {
+  for (const char* mode : {"monotone", "adaptive"}) {
+    LambdaNlp q = hs071();
+    IpmOptions opt;
+    opt.mu_strategy = mode;
+    const IpmResult r = solve(q, opt);
+    ASSERT_EQ(r.status, IpmStatus::kSolved) << mode;
+    EXPECT_NEAR(r.objective, 17.0140173, 1e-6) << mode;
+    EXPECT_NEAR(r.x[0], 1.0, 1e-6);
+    EXPECT_NEAR(r.x[1], 4.7429994, 1e-6);
+    EXPECT_NEAR(r.x[2], 3.8211503, 1e-6);
+    EXPECT_NEAR(r.x[3], 1.3794082, 1e-6);
+    EXPECT_LT(r.constraint_violation, 1e-8);
+    EXPECT_LT(r.stats.iterations, 20) << mode;  // Ipopt: 8
+  }
+}
+
+TEST(InteriorPoint, SolutionOnBoundsHasTheRightMultipliers) {
+  // min (x0 - 2)^2 + (x1 + 1)^2 on [0, 1] x [0, 1]: x = (1, 0), z_u0 = 2, z_l1 = 2.
+  LambdaNlp q;
+  q.n = 2;
+  q.m = 0;
+  q.xl = Eigen::Vector2d(0, 0);
+  q.xu = Eigen::Vector2d(1, 1);
+  q.gl.resize(0), q.gu.resize(0);
+  q.x0 = Eigen::Vector2d(0.5, 0.5);
+  q.f = [](const Eigen::VectorXd& x) { return std::pow(x[0] - 2, 2) + std::pow(x[1] + 1, 2); };
+  q.g = [](const Eigen::VectorXd&) { return Eigen::VectorXd(0); };
+  q.grad = [](const Eigen::VectorXd& x) { return Eigen::Vector2d(2 * (x[0] - 2), 2 * (x[1] + 1)); };
+  q.jac = [](const Eigen::VectorXd&) { return Eigen::MatrixXd(0, 2); };
+  q.hess = [](const Eigen::VectorXd&, double s, const Eigen::VectorXd&) { return Eigen::MatrixXd(2 * s * Eigen::Matrix2d::Identity()); };
+  q.finalize();
+  const IpmResult r = solve(q);
+  ASSERT_EQ(r.status, IpmStatus::kSolved);
+  EXPECT_NEAR(r.x[0], 1.0, 1e-7);
+  EXPECT_NEAR(r.x[1], 0.0, 1e-7);
+  EXPECT_NEAR(r.z_u[0], 2.0, 1e-6);
+  EXPECT_NEAR(r.z_l[1], 2.0, 1e-6);
+}
+
+TEST(InteriorPoint, NonconvexEqualityNeedsAndGetsInertiaCorrection) {
+  // min -x0^2 - x1^2 + 2 x2  s.t. x0^2 + x1^2 = 1 + x2, x2 in [0, 10], x0, x1 in [-2, 2]; start at a saddle of
+  // the Lagrangian. Optimum: objective -1 on the circle with x2 = 0.
+  LambdaNlp q;
+  q.n = 3;
+  q.m = 1;
+  q.xl = Eigen::Vector3d(-2, -2, 0);
+  q.xu = Eigen::Vector3d(2, 2, 10);
+  q.gl = Eigen::VectorXd::Zero(1);
+  q.gu = Eigen::VectorXd::Zero(1);
+  q.x0 = Eigen::Vector3d(0.1, 0.2, 1.0);
+  q.f = [](const Eigen::VectorXd& x) { return -x[0] * x[0] - x[1] * x[1] + 2 * x[2]; };
+  q.g = [](const Eigen::VectorXd& x) { return Eigen::VectorXd::Constant(1, x[0] * x[0] + x[1] * x[1] - 1 - x[2]); };
+  q.grad = [](const Eigen::VectorXd& x) { return Eigen::Vector3d(-2 * x[0], -2 * x[1], 2); };
+  q.jac = [](const Eigen::VectorXd& x) {
+    Eigen::MatrixXd J(1, 3);
+    J << 2 * x[0], 2 * x[1], -1;
+    return J;
+  };
+  q.hess = [](const Eigen::VectorXd&, double s, const Eigen::VectorXd& y) {
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    H(0, 0) = H(1, 1) = -2 * s + 2 * y[0];
+    return Eigen::MatrixXd(H);
+  };
+  q.finalize();
+  const IpmResult r = solve(q);
+  ASSERT_EQ(r.status, IpmStatus::kSolved);
+  EXPECT_NEAR(r.objective, -1.0, 1e-7);
+  EXPECT_NEAR(r.x[2], 0.0, 1e-7);
+  EXPECT_GT(r.stats.factorizations, r.stats.iterations + 1);  // some iterations were regularized
+}
+
+TEST(InteriorPoint, InfeasibleProblemEndsAsAStatus) {
+  // x0^2 + x1^2 = -1 has no solution.
+  LambdaNlp q;
+  q.n = 2;
+  q.m = 1;
+  q.xl = Eigen::Vector2d(-5, -5);
+  q.xu = Eigen::Vector2d(5, 5);
+  q.gl = Eigen::VectorXd::Constant(1, -1.0);
+  q.gu = Eigen::VectorXd::Constant(1, -1.0);
+  q.x0 = Eigen::Vector2d(1.0, 1.0);
+  q.f = [](const Eigen::VectorXd& x) { return x[0] + x[1]; };
+  q.g = [](const Eigen::VectorXd& x) { return Eigen::VectorXd::Constant(1, x.squaredNorm()); };
+  q.grad = [](const Eigen::VectorXd&) { return Eigen::Vector2d(1, 1); };
+  q.jac = [](const Eigen::VectorXd& x) {
+    Eigen::MatrixXd J(1, 2);
+    J << 2 * x[0], 2 * x[1];
+    return J;
+  };
+  q.hess = [](const Eigen::VectorXd&, double, const Eigen::VectorXd& y) {
+    return Eigen::MatrixXd(2 * y[0] * Eigen::Matrix2d::Identity());
+  };
+  q.finalize();
+  IpmOptions opt;
+  opt.max_iter = 200;
+  const IpmResult r = solve(q, opt);
+  EXPECT_NE(r.status, IpmStatus::kSolved);
+  EXPECT_NE(r.status, IpmStatus::kAcceptable);
+  EXPECT_GT(r.constraint_violation, 0.5);
+}
+
+TEST(InteriorPoint, IterationLimitIsAStatus) {
+  LambdaNlp q = hs071();
+  IpmOptions opt;
+  opt.max_iter = 2;
+  const IpmResult r = solve(q, opt);
+  EXPECT_EQ(r.status, IpmStatus::kMaxIterations);
+  EXPECT_EQ(r.stats.iterations, 2);
+}
