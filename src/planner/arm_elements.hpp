@@ -18,6 +18,7 @@ constexpr int kArmDof = 7;
 struct ArmContinuityElement : AdElement<ArmContinuityElement, 5, 2, 1> {
   explicit ArmContinuityElement(double step) : h(step) {}
   const char* name() const override { return "arm_continuity"; }
+  bool jacobianIsConstant() const override { return true; }
   template <class S>
   void compute(const S* in, S* out) const {
     out[0] = in[3] - (in[0] + in[1] * S(h) + in[2] * S(0.5 * h * h));
@@ -30,6 +31,7 @@ struct ArmContinuityElement : AdElement<ArmContinuityElement, 5, 2, 1> {
 template <int N>
 struct DifferenceElement : AdElement<DifferenceElement<N>, 2 * N, N, 1> {
   const char* name() const override { return "periodicity"; }
+  bool jacobianIsConstant() const override { return true; }
   template <class S>
   void compute(const S* in, S* out) const {
     for (int a = 0; a < N; ++a) out[a] = in[N + a] - in[a];
@@ -103,6 +105,7 @@ template <int N>
 struct SquaredNorm : AdElement<SquaredNorm<N>, N, 1> {
   explicit SquaredNorm(const char* label) : label_(label) {}
   const char* name() const override { return label_; }
+  bool hessianIsConstant() const override { return true; }
   template <class S>
   void compute(const S* in, S* out) const {
     S s = S(0);

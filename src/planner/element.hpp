@@ -29,6 +29,10 @@ class Element {
   virtual void evalJacobian(const double* in, double* out, double* jac) const = 0;
   /// hess: numInputs x numInputs (full, symmetric, row-major) of sum_j w[j] out[j].
   virtual void evalHessian(const double* in, const double* w, double* hess) const = 0;
+  /// Declarations an element may make (the finite-difference tests check them): its Jacobian does not depend on
+  /// the inputs (a linear function), or its Hessian does not (a quadratic). The Ocp then evaluates it once.
+  virtual bool jacobianIsConstant() const { return false; }
+  virtual bool hessianIsConstant() const { return false; }
 };
 
 template <class Derived, int NI, int NO, int NN = NI>

@@ -266,12 +266,105 @@ void Ocp::finalize() {
     remap(t.hess_slot, hess_perm);
   }
   for (auto& t : cost_terms_) remap(t.hess_slot, hess_perm);
+  auto compact = [](const std::vector<int>& slots, std::vector<std::pair<int, int>>& nz) {
+    nz.clear();
+    for (std::size_t k = 0; k < slots.size(); ++k)
+      if (slots[k] >= 0) nz.emplace_back(static_cast<int>(k), slots[k]);
+  };
+  for (auto& t : constraint_terms_) {
+    compact(t.jac_slot, t.jac_nz);
+    compact(t.hess_slot, t.hess_nz);
+  }
+  for (auto& t : cost_terms_) compact(t.hess_slot, t.hess_nz);
   buf_in_.resize(max_in);
   buf_out_.resize(max_out);
   buf_jac_.resize(max_in * max_out);
   buf_hess_.resize(max_in * max_in);
   buf_w_.resize(max_out);
+  max_in_ = max_in;
+  max_out_ = max_out;
+  cacheConstantDerivatives();
   finalized_ = true;
+}
+
+// Linear constraint terms (constant Jacobian) and quadratic costs (constant Hessian) are evaluated once here.
+void Ocp::cacheConstantDerivatives() {
+  const_jac_.assign(jac_rows_.size(), 0.0);
+  const_cost_hess_.assign(hess_rows_.size(), 0.0);
+  for (auto& t : constraint_terms_) {
+    t.const_jac = t.element->jacobianIsConstant() && !t.has_hessian;
+    if (!t.const_jac) continue;
+    const int ni = static_cast<int>(t.in.size()), no = static_cast<int>(t.out_rows.size());
+    for (int i = 0; i < ni; ++i) buf_in_[i] = z0_[t.in[i]];
+    t.element->evalJacobian(buf_in_.data(), buf_out_.data(), buf_jac_.data());
+    for (int k = 0; k < no * ni; ++k)
+      if (t.jac_slot[k] >= 0) const_jac_[t.jac_slot[k]] += buf_jac_[k];
+  }
+  for (auto& t : cost_terms_) {
+    t.const_hess = t.element->hessianIsConstant() && t.has_hessian;
+    if (!t.const_hess) continue;
+    const int ni = static_cast<int>(t.in.size()), no = t.element->numOutputs();
+    for (int i = 0; i < ni; ++i) buf_in_[i] = z0_[t.in[i]];
+    for (int j = 0; j < no; ++j) buf_w_[j] = t.weight;
+    t.element->evalHessian(buf_in_.data(), buf_w_.data(), buf_hess_.data());
+    scatterHessian(t, buf_hess_.data(), 1.0, const_cost_hess_.data());
+  }
+}
+
+void Ocp::scatterHessian(const Instance& t, const double* h, double scale, double* values) const {
+  // each lower-triangle pair maps to one slot (see analyze)
+  for (const auto& [k, slot] : t.hess_nz) values[slot] += scale * h[k];
+}
+
+double Ocp::constraintTermWork(int i) const {
+  const Instance& t = constraint_terms_[i];
+  const double ni = static_cast<double>(t.in.size()), no = static_cast<double>(t.out_rows.size());
+  return t.const_jac ? 0.0 : ni * no + (t.has_hessian ? ni * ni : 0.0);
+}
+
+void Ocp::addConstantDerivatives(double sigma, double* jac, double* hess) const {
+  for (std::size_t k = 0; k < const_jac_.size(); ++k) jac[k] += const_jac_[k];
+  if (sigma != 0.0)
+    for (std::size_t k = 0; k < const_cost_hess_.size(); ++k) hess[k] += sigma * const_cost_hess_[k];
+}
+
+void Ocp::addDerivatives(const double* z, double sigma, const double* lambda, int c0, int c1, int k0, int k1,
+                         Scratch& s, double* grad, double* jac, double* hess) const {
+  s.in.resize(max_in_);
+  s.out.resize(max_out_);
+  s.jac.resize(max_in_ * max_out_);
+  s.hess.resize(max_in_ * max_in_);
+  s.w.resize(max_out_);
+  for (int c = c0; c < c1; ++c) {
+    const Instance& t = constraint_terms_[c];
+    if (t.const_jac) continue;
+    const int ni = static_cast<int>(t.in.size()), no = static_cast<int>(t.out_rows.size());
+    for (int i = 0; i < ni; ++i) s.in[i] = z[t.in[i]];
+    bool any = false;
+    for (int j = 0; j < no; ++j) {
+      s.w[j] = lambda[t.out_rows[j]];
+      any = any || s.w[j] != 0.0;
+    }
+    t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
+    if (t.has_hessian && any) {
+      t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
+      scatterHessian(t, s.hess.data(), 1.0, hess);
+    }
+    for (const auto& [k, slot] : t.jac_nz) jac[slot] += s.jac[k];
+  }
+  for (int c = k0; c < k1; ++c) {
+    const Instance& t = cost_terms_[c];
+    const int ni = static_cast<int>(t.in.size()), no = t.element->numOutputs();
+    for (int i = 0; i < ni; ++i) s.in[i] = z[t.in[i]];
+    for (int j = 0; j < no; ++j) s.w[j] = sigma * t.weight;
+    t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
+    if (t.has_hessian && !t.const_hess && sigma != 0.0) {
+      t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
+      scatterHessian(t, s.hess.data(), 1.0, hess);
+    }
+    for (int j = 0; j < no; ++j)
+      for (int i = 0; i < ni; ++i) grad[t.in[i]] += t.weight * s.jac[j * ni + i];
+  }
 }
 
 double Ocp::objective(const double* z) const {
@@ -318,8 +411,9 @@ void Ocp::constraints(const double* z, double* g) const {
 }
 
 void Ocp::jacobian(const double* z, double* values) const {
-  std::fill(values, values + jacobianNonzeros(), 0.0);
+  std::copy(const_jac_.begin(), const_jac_.end(), values);
   for (const auto& t : constraint_terms_) {
+    if (t.const_jac) continue;
     const int ni = static_cast<int>(t.in.size()), no = static_cast<int>(t.out_rows.size());
     for (int i = 0; i < ni; ++i) buf_in_[i] = z[t.in[i]];
     t.element->evalJacobian(buf_in_.data(), buf_out_.data(), buf_jac_.data());
@@ -354,8 +448,9 @@ void Ocp::hessian(const double* z, double sigma, const double* lambda, double* v
     if (any) accumulate(t);
   }
   if (sigma != 0.0) {
+    for (std::size_t k = 0; k < const_cost_hess_.size(); ++k) values[k] += sigma * const_cost_hess_[k];
     for (const auto& t : cost_terms_) {
-      if (!t.has_hessian) continue;
+      if (!t.has_hessian || t.const_hess) continue;
       const int no = t.element->numOutputs();
       for (int j = 0; j < no; ++j) buf_w_[j] = sigma * t.weight;
       accumulate(t);

@@ -93,6 +93,23 @@ class Ocp {
   /// Lower triangle of sigma * Hess(f) + sum_i lambda_i Hess(g_i).
   void hessian(const double* z, double sigma, const double* lambda, double* values) const;
 
+  // ---- the same derivatives in parts, for parallel evaluation (OcpEvaluator) ----
+  /// Buffers of one evaluating thread.
+  struct Scratch {
+    std::vector<double> in, out, jac, hess, w;
+  };
+  int numConstraintTerms() const { return static_cast<int>(constraint_terms_.size()); }
+  int numCostTerms() const { return static_cast<int>(cost_terms_.size()); }
+  /// Relative work of a constraint term's derivatives (for splitting the terms between threads).
+  double constraintTermWork(int i) const;
+  /// grad, jac, hess += the derivatives that depend on z of constraint terms [c0, c1) and cost terms [k0, k1).
+  /// jac and hess are in the
+  /// Jacobian / Hessian structure; nothing is zeroed.
+  void addDerivatives(const double* z, double sigma, const double* lambda, int c0, int c1, int k0, int k1, Scratch& s,
+                      double* grad, double* jac, double* hess) const;
+  /// jac += the constant Jacobian entries (linear terms), hess += sigma * the constant cost Hessian (quadratic costs).
+  void addConstantDerivatives(double sigma, double* jac, double* hess) const;
+
   /// Per-term costs at z (name -> value), for reporting.
   std::map<std::string, double> costBreakdown(const double* z) const;
   /// Constraint block names and rows, for reporting the largest violation.
@@ -114,7 +131,13 @@ class Ocp {
     std::vector<int> jac_slot;   // NO x NI (row-major), -1 if structurally zero
     std::vector<int> hess_slot;  // NI x NI (row-major), -1 if zero or upper triangle duplicate
     bool has_hessian = false;
+    std::vector<std::pair<int, int>> jac_nz, hess_nz;  // (entry of the element's dense block, slot), nonzeros only
+    bool const_jac = false;       // constraint: Jacobian evaluated once (const_jac_)
+    bool const_hess = false;      // cost: Hessian evaluated once (const_cost_hess_)
   };
+  void cacheConstantDerivatives();
+  void scatterHessian(const Instance& t, const double* h, double scale, double* values) const;
+  std::vector<double> const_jac_, const_cost_hess_;
   const Var& var(const std::string& name) const;
   void checkNode(const Var& v, int k) const;
   struct Pattern {
@@ -141,6 +164,7 @@ class Ocp {
   bool finalized_ = false;
   std::vector<int> jac_rows_, jac_cols_, hess_rows_, hess_cols_;
   mutable std::vector<double> buf_in_, buf_out_, buf_jac_, buf_hess_, buf_w_;  // evaluation scratch (sized once)
+  std::size_t max_in_ = 1, max_out_ = 1;
 };
 
 }  // namespace centaur::planner

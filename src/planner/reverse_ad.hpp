@@ -25,17 +25,12 @@ struct TapeNode {
 };
 
 struct Tape {
-  std::vector<TapeNode> nodes;
-  std::vector<double> values;
-  int push(double v, int a, double da, int b, double db, double daa, double dab, double dbb, bool curved) {
+  std::vector<TapeNode> nodes;  // the values live in the TapeVars; the sweeps need the partials only
+  int push(double /*v*/, int a, double da, int b, double db, double daa, double dab, double dbb, bool curved) {
     nodes.push_back(TapeNode{a, b, da, db, daa, dab, dbb, curved});
-    values.push_back(v);
     return static_cast<int>(nodes.size()) - 1;
   }
-  void clear() {
-    nodes.clear();
-    values.clear();
-  }
+  void clear() { nodes.clear(); }
 };
 
 /// The tape all TapeVar operations record on (one per thread).

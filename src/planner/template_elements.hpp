@@ -27,6 +27,7 @@ struct PositionStep : AdElement<PositionStep, 5, 1> {
 /// Inputs: v_k, a_k, dt, v_{k+1}. Output: v_{k+1} - (v_k + a_k dt).
 struct VelocityStep : AdElement<VelocityStep, 4, 1> {
   const char* name() const override { return "continuity_velocity"; }
+  bool hessianIsConstant() const override { return true; }  // bilinear
   template <class S>
   void compute(const S* in, S* out) const {
     out[0] = in[3] - (in[0] + in[1] * in[2]);
@@ -127,6 +128,7 @@ struct FootPointElement : AdElement<FootPointElement, 10, 3> {
 /// Inputs: q_ci (3, hip -> foot in the waist frame). Output (1): |q_ci|^2 (leg reach, bounded above by r^2).
 struct LegReachElement : AdElement<LegReachElement, 3, 1> {
   const char* name() const override { return "leg_reach"; }
+  bool hessianIsConstant() const override { return true; }
   template <class S>
   void compute(const S* in, S* out) const {
     out[0] = in[0] * in[0] + in[1] * in[1] + in[2] * in[2];
@@ -180,6 +182,7 @@ struct FootVelocitySquared : AdElement<FootVelocitySquared, 16, 1> {
 struct FrictionPyramidElement : AdElement<FrictionPyramidElement, 3, 5, 1> {
   FrictionPyramidElement(const Eigen::Vector3d& normal, double mu, double threshold, double scale);
   const char* name() const override { return "friction_pyramid"; }
+  bool jacobianIsConstant() const override { return true; }
   template <class S>
   void compute(const S* F, S* out) const {
     const S fn = S(n[0]) * F[0] + S(n[1]) * F[1] + S(n[2]) * F[2];
@@ -201,6 +204,7 @@ struct FrictionConeElement : AdElement<FrictionConeElement, 3, 2> {
   FrictionConeElement(const Eigen::Vector3d& normal, double mu, double threshold, double scale)
       : n(normal.normalized()), mu(mu), thr(threshold), inv_scale(1.0 / scale) {}
   const char* name() const override { return "friction_cone"; }
+  bool hessianIsConstant() const override { return true; }
   template <class S>
   void compute(const S* F, S* out) const {
     const S fn = S(n[0]) * F[0] + S(n[1]) * F[1] + S(n[2]) * F[2];
@@ -225,6 +229,7 @@ struct SquaredError : AdElement<SquaredError<N>, N, 1> {
   explicit SquaredError(const Eigen::Matrix<double, N, 1>& reference, const char* label = "squared_error")
       : ref(reference), label_(label) {}
   const char* name() const override { return label_; }
+  bool hessianIsConstant() const override { return true; }
   template <class S>
   void compute(const S* in, S* out) const {
     S s = S(0);
@@ -242,6 +247,7 @@ struct SquaredError : AdElement<SquaredError<N>, N, 1> {
 template <int N>
 struct SquaredDifference : AdElement<SquaredDifference<N>, 2 * N, 1> {
   const char* name() const override { return "squared_difference"; }
+  bool hessianIsConstant() const override { return true; }
   template <class S>
   void compute(const S* in, S* out) const {
     S s = S(0);

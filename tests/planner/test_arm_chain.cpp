@@ -191,6 +191,17 @@ void checkElement(const E& e, const Fixture& f, unsigned seed, double scale_in =
     }
     e.evalHessianForward(x.data(), w.data(), Hf.data());
     for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H[k], Hf[k]), 1e-10) << e.name();
+    // Declared constant derivatives are constant (the Ocp evaluates them once).
+    std::vector<double> y3(no), J3(no * ni), H3(ni * ni), x2(ni);
+    for (auto& v : x2) v = U(rng);
+    if (e.jacobianIsConstant()) {
+      e.evalJacobian(x2.data(), y3.data(), J3.data());
+      for (int k = 0; k < no * ni; ++k) EXPECT_EQ(J3[k], J[k]) << e.name() << " declares a constant Jacobian";
+    }
+    if (e.hessianIsConstant()) {
+      e.evalHessian(x2.data(), w.data(), H3.data());
+      for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H3[k], H[k]), 1e-14) << e.name() << " declares a constant Hessian";
+    }
   }
 }
 

@@ -10,6 +10,7 @@
 #include "planner/jump_problem.hpp"
 #include "planner/template_elements.hpp"
 #include "planner/nlp_fd_check.hpp"
+#include "planner/ocp_nlp.hpp"
 
 using namespace centaur;
 using namespace centaur::planner;
@@ -73,6 +74,17 @@ void checkElement(const Element& e, unsigned seed) {
     for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H[k], Hfd[k]), 1e-6) << e.name() << " H[" << k << "]";
     for (int a = 0; a < ni; ++a)
       for (int b = 0; b < ni; ++b) EXPECT_LT(relErr(H[a * ni + b], H[b * ni + a]), 1e-12) << e.name();
+    // Declared constant derivatives are constant (the Ocp evaluates them once).
+    std::vector<double> x2(ni), J2(no * ni), H2(ni * ni);
+    for (auto& v : x2) v = 2.0 * U(rng);
+    if (e.jacobianIsConstant()) {
+      e.evalJacobian(x2.data(), f2.data(), J2.data());
+      for (int k = 0; k < no * ni; ++k) EXPECT_EQ(J2[k], J[k]) << e.name() << " declares a constant Jacobian";
+    }
+    if (e.hessianIsConstant()) {
+      e.evalHessian(x2.data(), w.data(), H2.data());
+      for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H2[k], H[k]), 1e-14) << e.name() << " declares a constant Hessian";
+    }
   }
 }
 
@@ -167,5 +179,33 @@ TEST(Derivatives, AssembledNlpMatchesCentralDifferences) {
     Eigen::VectorXd lambda(m);
     for (int j = 0; j < m; ++j) lambda[j] = U(rng);
     centaur::test::expectNlpMatchesCentralDifferences(ocp, z, lambda, 0.7, primitive);
+  }
+}
+
+TEST(Derivatives, SplitAndTwoThreadEvaluationEqualsTheSeparateCalls) {
+  // OcpNlp::derivatives (constant parts cached, the terms optionally split over two threads) against
+  // Ocp::gradient / jacobian / hessian, which the central-difference test above checks.
+  for (const std::string primitive : {"squat-jump", "half-squat-jump"}) {
+    const JumpProblem problem(loadJumpConfig(primitive, "", {}));
+    const Ocp& ocp = problem.ocp();
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    Eigen::VectorXd z = ocp.guess(), y(ocp.numConstraints());
+    for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * U(rng) * ocp.scale()[i];
+    for (int j = 0; j < y.size(); ++j) y[j] = U(rng);
+    Eigen::VectorXd g0(ocp.numVariables());
+    std::vector<double> j0(ocp.jacobianNonzeros()), h0(ocp.hessianNonzeros());
+    ocp.gradient(z.data(), g0.data());
+    ocp.jacobian(z.data(), j0.data());
+    ocp.hessian(z.data(), 0.7, y.data(), h0.data());
+    for (int threads : {1, 2}) {
+      OcpNlp nlp(ocp, true, nullptr, threads);
+      Eigen::VectorXd g;
+      std::vector<double> j(j0.size()), h(h0.size());
+      ASSERT_TRUE(nlp.derivatives(z, 0.7, y, g, j.data(), h.data()));
+      EXPECT_LT((g - g0).cwiseAbs().maxCoeff(), 1e-9 * (1.0 + g0.cwiseAbs().maxCoeff())) << primitive << threads;
+      for (std::size_t k = 0; k < j0.size(); ++k) ASSERT_LT(relErr(j[k], j0[k]), 1e-12) << primitive << " J " << k;
+      for (std::size_t k = 0; k < h0.size(); ++k) ASSERT_LT(relErr(h[k], h0[k]), 1e-10) << primitive << " H " << k;
+    }
   }
 }

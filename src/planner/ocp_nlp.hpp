@@ -1,0 +1,44 @@
+#pragma once
+// The Ocp as the NLP of our interior-point method (ocp_solver/nlp.hpp), and the stage of each decision
+// variable (z = [x_0, u_0, x_1, ..., x_N]) for the stage-wise KKT solver.
+#include <memory>
+
+#include "ocp_solver/nlp.hpp"
+#include "ocp_solver/stage_kkt.hpp"
+#include "planner/ocp.hpp"
+#include "planner/worker_thread.hpp"
+
+namespace centaur::planner {
+
+class OcpNlp final : public ocp_solver::Nlp {
+ public:
+  /// x0: the initial point (the OCP's guess if null); user_scaling: use Ocp::scale() as variable scale;
+  /// threads: 1 or 2 (the derivatives are split between two threads by estimated work).
+  OcpNlp(const Ocp& ocp, bool user_scaling, const Eigen::VectorXd* x0, int threads = 1);
+
+  const ocp_solver::SparsePattern& pattern() const override { return pattern_; }
+  void bounds(Eigen::VectorXd& x_l, Eigen::VectorXd& x_u, Eigen::VectorXd& g_l, Eigen::VectorXd& g_u) const override;
+  Eigen::VectorXd initialPoint() const override { return x0_; }
+  Eigen::VectorXd variableScale() const override;
+  bool objective(const Eigen::VectorXd& x, double& f) override;
+  bool constraints(const Eigen::VectorXd& x, Eigen::VectorXd& g) override;
+  bool derivatives(const Eigen::VectorXd& x, double obj_factor, const Eigen::VectorXd& y, Eigen::VectorXd& grad,
+                   double* jac, double* hess) override;
+
+  ocp_solver::StageLayout stageLayout() const;
+  std::vector<char> fixedVariables() const;
+  std::vector<char> equalityRows() const;
+
+ private:
+  const Ocp& ocp_;
+  bool user_scaling_;
+  Eigen::VectorXd x0_;
+  ocp_solver::SparsePattern pattern_;
+  std::unique_ptr<WorkerThread> worker_;
+  int split_c_ = 0, split_k_ = 0;  // terms [0, split) on the caller, the rest on the worker
+  Ocp::Scratch scratch_[2];
+  Eigen::VectorXd grad1_;
+  std::vector<double> jac1_, hess1_;
+};
+
+}  // namespace centaur::planner
