@@ -10,7 +10,9 @@
 #include <random>
 
 #include "model/template_params.hpp"
+#include "ocp_solver/stage_kkt.hpp"
 #include "planner/jump_problem.hpp"
+#include "planner/ocp_nlp.hpp"
 #include "planner/template_elements.hpp"
 
 namespace {
@@ -100,6 +102,77 @@ void BM_NlpConstraintsAndGradient(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_NlpConstraintsAndGradient)->Unit(benchmark::kMicrosecond);
+
+// What the riccati backend evaluates per iteration: gradient, Jacobian and Hessian at once (one tape per term,
+// linear constraint Jacobians and quadratic cost Hessians cached), on 1 or 2 threads (Arg). Compare with
+// BM_NlpHessian + BM_NlpJacobian + the gradient (what Ipopt asks for). Real time is the figure that counts
+// with 2 threads.
+void BM_NlpDerivatives(benchmark::State& state) {
+  static const NlpPoint p;
+  const Ocp& ocp = p.problem.ocp();
+  OcpNlp nlp(ocp, true, nullptr, static_cast<int>(state.range(0)));
+  Eigen::VectorXd g;
+  std::vector<double> j(ocp.jacobianNonzeros()), h(ocp.hessianNonzeros());
+  for (auto _ : state) {
+    nlp.derivatives(p.z, 0.7, p.lambda, g, j.data(), h.data());
+    benchmark::DoNotOptimize(h.data());
+  }
+}
+BENCHMARK(BM_NlpDerivatives)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// The stage-wise KKT solver on the squat jump's Newton system at the perturbed guess (barrier diagonal 1,
+// inequality rows condensed with weight 1): structure analysis, factorization and solve (with refinement).
+struct KktPoint {
+  NlpPoint p;
+  OcpNlp nlp{p.problem.ocp(), true, nullptr};
+  std::vector<double> jac, hess;
+  Eigen::VectorXd dx, dc, rx, rc;
+  KktPoint() {
+    const Ocp& ocp = p.problem.ocp();
+    jac.resize(ocp.jacobianNonzeros());
+    hess.resize(ocp.hessianNonzeros());
+    ocp.jacobian(p.z.data(), jac.data());
+    ocp.hessian(p.z.data(), 1.0, Eigen::VectorXd::Zero(ocp.numConstraints()).eval().data(), hess.data());
+    dx = Eigen::VectorXd::Constant(ocp.numVariables(), 1.0);
+    dc.resize(ocp.numConstraints());
+    const auto eq = nlp.equalityRows();
+    for (int r = 0; r < dc.size(); ++r) dc[r] = eq[r] ? 0.0 : 1.0;
+    rx = Eigen::VectorXd::Ones(ocp.numVariables());
+    rc = Eigen::VectorXd::Ones(ocp.numConstraints());
+  }
+  ocp_solver::StageKktSolver solver() const {
+    return ocp_solver::StageKktSolver(nlp.pattern(), nlp.stageLayout(), nlp.fixedVariables(), nlp.equalityRows());
+  }
+};
+
+void BM_StageKktFactor(benchmark::State& state) {
+  static KktPoint k;
+  auto s = k.solver();
+  int sum_carried = 0, max_state = 0;
+  for (int i = 0; i <= k.p.problem.ocp().numIntervals(); ++i) {
+    sum_carried += s.carriedSize(i);
+    max_state = std::max(max_state, s.stateSize(i) + s.carriedSize(i));
+  }
+  ocp_solver::KktStatus st = ocp_solver::KktStatus::kOk;
+  for (auto _ : state) st = s.factor(k.hess.data(), k.jac.data(), k.dx, k.dc);
+  state.counters["status"] = static_cast<int>(st);
+  state.counters["carried_mean"] = static_cast<double>(sum_carried) / (k.p.problem.ocp().numIntervals() + 1);
+  state.counters["state_max"] = max_state;
+}
+BENCHMARK(BM_StageKktFactor)->Unit(benchmark::kMicrosecond);
+
+void BM_StageKktSolve(benchmark::State& state) {
+  static KktPoint k;
+  auto s = k.solver();
+  state.counters["status"] = static_cast<int>(s.factor(k.hess.data(), k.jac.data(), k.dx, k.dc));
+  Eigen::VectorXd x, y;
+  for (auto _ : state) {
+    s.solve(k.rx, k.rc, x, y);
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["residual"] = s.lastResidual();
+}
+BENCHMARK(BM_StageKktSolve)->Unit(benchmark::kMicrosecond);
 
 // One foot-dynamics element (25 inputs, 9 outputs, 13 nonlinear): the largest element of the OCP.
 struct FootPoint {

@@ -39,9 +39,18 @@ std::string sidecarPath(const std::string& out, const std::string& name) {
 }
 
 // The solver line of the progress output and the solver fields of --json, the same for every primitive.
-void printSolveLine(const std::string& name, const planner::SolveInfo& info) {
+void printSolveLine(const std::string& name, const planner::SolveResult& result) {
+  const planner::SolveInfo& info = result.info;
+  const planner::SolveStats& st = result.stats;
   std::fprintf(stderr, "%s: %s after %d iterations in %.3f s, cost %.6g, max violation %.2e\n", name.c_str(),
                info.status.c_str(), info.iterations, info.solve_time_s, info.cost, info.max_constraint_violation);
+  std::fprintf(stderr, "  backend %s: derivatives %.3f s", st.backend.c_str(), st.derivative_time_s);
+  if (st.factorizations >= 0) {
+    std::fprintf(stderr, ", %d KKT factorizations (%.2f per iteration) %.3f s, KKT solves %.3f s", st.factorizations,
+                 info.iterations > 0 ? static_cast<double>(st.factorizations) / info.iterations : 0.0,
+                 st.factor_time_s, st.linear_solve_time_s);
+  }
+  std::fprintf(stderr, "\n");
 }
 
 nlohmann::json solveJson(const std::string& name, const planner::SolveInfo& info) {
@@ -69,7 +78,7 @@ int runArmPlan(const PlanArgs& a) {
   double torque_ratio = 0.0;
   for (int j = 0; j < 7; ++j) torque_ratio = std::max(torque_ratio, tr.tau.col(j).cwiseAbs().maxCoeff() / tr.tau_max_model[j]);
   if (!a.quiet) {
-    printSolveLine("arm-flywheel", result.info);
+    printSolveLine("arm-flywheel", result);
     std::fprintf(stderr, "  period %.3f s, h_y mean %.3f N m s (peak %.3f), peak |tau|/limit %.2f, written to %s\n",
                  tr.period, h_mean, h_peak, torque_ratio, a.out.c_str());
     if (!ok) std::fprintf(stderr, "warning: the solver did not converge; the file is written and flagged (solve_status)\n");
@@ -105,7 +114,7 @@ int runPlan(const PlanArgs& a) {
   const auto s = planner::summarize(prim);
   const bool ok = result.info.solved();
   if (!a.quiet) {
-    printSolveLine(prim.name, result.info);
+    printSolveLine(prim.name, result);
     std::fprintf(stderr, "  duration %.3f s, flight %.3f s, apex waist height %.3f m (+%.3f m), written to %s\n",
                  s.duration, s.flight_time, s.apex_height, s.apex_gain, a.out.c_str());
     if (!ok) std::fprintf(stderr, "warning: the solver did not converge; the file is written and flagged (solve_status)\n");

@@ -30,6 +30,7 @@ cost:
 phase_anchor: false
 sample_dt: 0.001
 solver:
+  backend: ipopt
   tol: 1.0e-8
   constr_viol_tol: 1.0e-6
   max_iter: 1000

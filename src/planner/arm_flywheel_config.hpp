@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "planner/ipopt_solver.hpp"
+#include "planner/solver_settings.hpp"
 
 namespace centaur::planner {
 

@@ -6,6 +6,7 @@
 
 #include "common/error.hpp"
 #include "common/yaml_reader.hpp"
+#include "planner/solve_ocp.hpp"
 #include "model/chain_from_mjcf.hpp"
 #include "planner/arm_elements.hpp"
 
@@ -147,7 +148,7 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
 SolveResult ArmFlywheelProblem::solve(bool progress) const {
   SolverSettings s = cfg_.solver;
   s.progress = progress;
-  return solveWithIpopt(ocp_, s);
+  return solveOcp(ocp_, s);
 }
 
 ArmTrajectory ArmFlywheelProblem::toTrajectory(const SolveResult& result) const {

@@ -16,7 +16,7 @@
 #include "model/serial_chain.hpp"
 #include "planner/arm_flywheel_config.hpp"
 #include "planner/arm_trajectory.hpp"
-#include "planner/ipopt_solver.hpp"
+#include "planner/solver_settings.hpp"
 #include "planner/ocp.hpp"
 
 namespace centaur::planner {

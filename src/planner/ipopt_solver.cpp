@@ -1,7 +1,5 @@
 #include "planner/ipopt_solver.hpp"
 
-#include "common/yaml_reader.hpp"
-
 #include <IpIpoptApplication.hpp>
 #include <IpIpoptData.hpp>
 #include <IpTNLP.hpp>
@@ -19,7 +17,8 @@ using Ipopt::Number;
 
 class OcpTnlp : public Ipopt::TNLP {
  public:
-  OcpTnlp(const Ocp& ocp, const SolverSettings& s, SolveResult& result) : ocp_(ocp), s_(s), result_(result) {}
+  OcpTnlp(const Ocp& ocp, const SolverSettings& s, const Eigen::VectorXd* x0, SolveResult& result)
+      : ocp_(ocp), s_(s), x0_(x0), result_(result) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
     n = ocp_.numVariables();
@@ -45,7 +44,8 @@ class OcpTnlp : public Ipopt::TNLP {
   bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number*, Number*, Index, bool init_lambda,
                           Number*) override {
     if (!init_x || init_z || init_lambda) return false;
-    for (Index i = 0; i < n; ++i) x[i] = ocp_.guess()[i];
+    const Eigen::VectorXd& start = x0_ ? *x0_ : ocp_.guess();
+    for (Index i = 0; i < n; ++i) x[i] = start[i];
     return true;
   }
 
@@ -59,14 +59,17 @@ class OcpTnlp : public Ipopt::TNLP {
   }
 
   bool eval_f(Index, const Number* x, bool, Number& obj) override {
+    const Timer t(result_.stats.function_time_s);
     obj = ocp_.objective(x);
     return std::isfinite(obj);
   }
   bool eval_grad_f(Index, const Number* x, bool, Number* g) override {
+    const Timer t(result_.stats.derivative_time_s);
     ocp_.gradient(x, g);
     return true;
   }
   bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
+    const Timer t(result_.stats.function_time_s);
     ocp_.constraints(x, g);
     return true;
   }
@@ -77,6 +80,7 @@ class OcpTnlp : public Ipopt::TNLP {
         jCol[k] = ocp_.jacobianCols()[k];
       }
     } else {
+      const Timer t(result_.stats.derivative_time_s);
       ocp_.jacobian(x, values);
     }
     return true;
@@ -89,6 +93,7 @@ class OcpTnlp : public Ipopt::TNLP {
         jCol[k] = ocp_.hessianCols()[k];
       }
     } else {
+      const Timer t(result_.stats.derivative_time_s);
       ocp_.hessian(x, obj_factor, lambda, values);
     }
     return true;
@@ -106,9 +111,10 @@ class OcpTnlp : public Ipopt::TNLP {
   }
 
   void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number*, const Number*, Index m,
-                         const Number* g, const Number*, Number obj_value, const Ipopt::IpoptData* ip_data,
+                         const Number* g, const Number* lambda, Number obj_value, const Ipopt::IpoptData* ip_data,
                          Ipopt::IpoptCalculatedQuantities*) override {
     result_.z = Eigen::Map<const Eigen::VectorXd>(x, n);
+    result_.y = Eigen::Map<const Eigen::VectorXd>(lambda, m);
     result_.info.cost = obj_value;
     result_.info.iterations = ip_data ? static_cast<int>(ip_data->iter_count()) : 0;
     double viol = 0.0;
@@ -134,17 +140,26 @@ class OcpTnlp : public Ipopt::TNLP {
   }
 
  private:
+  // Adds the wall time of its scope to a counter.
+  struct Timer {
+    explicit Timer(double& acc) : acc_(acc), t0_(std::chrono::steady_clock::now()) {}
+    ~Timer() { acc_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+    double& acc_;
+    std::chrono::steady_clock::time_point t0_;
+  };
   const Ocp& ocp_;
   const SolverSettings& s_;
+  const Eigen::VectorXd* x0_;
   SolveResult& result_;
 };
 
 }  // namespace
 
-SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s) {
+SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s, const Eigen::VectorXd* x0) {
   SolveResult result;
-  result.z = ocp.guess();
-  Ipopt::SmartPtr<Ipopt::TNLP> nlp = new OcpTnlp(ocp, s, result);
+  result.z = x0 ? *x0 : ocp.guess();
+  result.stats.backend = "ipopt";
+  Ipopt::SmartPtr<Ipopt::TNLP> nlp = new OcpTnlp(ocp, s, x0, result);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->Options()->SetIntegerValue("print_level", s.print_level);
   app->Options()->SetStringValue("sb", "yes");  // no banner
@@ -161,6 +176,11 @@ SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s) {
   app->Options()->SetStringValue("hessian_approximation", s.hessian);
   if (s.user_scaling) app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
   if (s.print_level >= 5) app->Options()->SetStringValue("print_timing_statistics", "yes");
+  if (x0) {  // warm start from a neighbouring solution: stay near it (no multipliers are known)
+    app->Options()->SetNumericValue("mu_init", 1e-4);
+    app->Options()->SetNumericValue("bound_push", 1e-6);
+    app->Options()->SetNumericValue("bound_frac", 1e-6);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   Ipopt::ApplicationReturnStatus st = app->Initialize();
   if (st != Ipopt::Solve_Succeeded) {
@@ -172,18 +192,6 @@ SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s) {
   if (result.info.status == "not_run") result.info.status = "failed";
   result.ipopt_status = std::to_string(static_cast<int>(st));
   return result;
-}
-
-void readSolverSettings(YamlReader& s, SolverSettings& c) {
-  s.get("tol", c.tol, 1e-12, 1.0);
-  s.get("constr_viol_tol", c.constr_viol_tol, 1e-12, 1.0);
-  s.get("max_iter", c.max_iter, 0, 100000);
-  s.get("max_cpu_time", c.max_cpu_time, 0.01, 1e6);
-  s.get("hessian", c.hessian, {"exact", "limited-memory"});
-  s.get("mu_strategy", c.mu_strategy, {"adaptive", "monotone"});
-  s.get("user_scaling", c.user_scaling);
-  s.get("print_level", c.print_level, 0, 12);
-  s.finish();
 }
 
 }  // namespace centaur::planner

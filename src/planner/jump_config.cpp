@@ -53,6 +53,7 @@ cost:
   velocity_regularization: 0.0
   base_angular_velocity: 1000.0
 solver:
+  backend: ipopt
   tol: 1.0e-8
   constr_viol_tol: 1.0e-4
   max_iter: 3000

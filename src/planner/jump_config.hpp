@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 
 #include "model/template_model.hpp"
-#include "planner/ipopt_solver.hpp"
+#include "planner/solver_settings.hpp"
 
 namespace centaur::planner {
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "common/yaml_reader.hpp"
+#include "planner/solve_ocp.hpp"
 #include "planner/template_elements.hpp"
 
 namespace centaur::planner {
@@ -302,7 +303,7 @@ void JumpProblem::buildGuess() {
 SolveResult JumpProblem::solve(bool progress) const {
   SolverSettings s = cfg_.solver;
   s.progress = progress;
-  return solveWithIpopt(ocp_, s);
+  return solveOcp(ocp_, s);
 }
 
 }  // namespace centaur::planner

@@ -10,7 +10,7 @@
 // (x_k, u_k); workspace bounds are bounds on q_C (the legs are prismatic along the waist axes).
 #include <vector>
 
-#include "planner/ipopt_solver.hpp"
+#include "planner/solver_settings.hpp"
 #include "planner/jump_config.hpp"
 #include "planner/ocp.hpp"
 #include "planner/primitive.hpp"

@@ -1,0 +1,47 @@
+#pragma once
+// Settings and result of an OCP solve, common to both backends: our interior-point method with the stage-wise
+// (Riccati) KKT solver ("riccati", experimental) and Ipopt with MUMPS ("ipopt", the default and reference).
+#include <string>
+
+#include <Eigen/Core>
+
+#include "common/yaml_reader.hpp"
+#include "planner/primitive.hpp"
+
+namespace centaur::planner {
+
+struct SolverSettings {
+  std::string backend = "ipopt";  ///< ipopt | riccati
+  double tol = 1e-8;              ///< scaled optimality error (Ipopt's `tol`)
+  double constr_viol_tol = 1e-4;  ///< constraint violation (Ipopt's `constr_viol_tol`)
+  int max_iter = 3000;
+  double max_cpu_time = 600.0;    ///< [s]
+  std::string hessian = "exact";  ///< exact | limited-memory (ipopt only)
+  std::string mu_strategy = "adaptive";  ///< monotone | adaptive
+  bool user_scaling = true;       ///< scale variables by their typical magnitude (Ocp::setScale)
+  int print_level = 0;            ///< Ipopt's own output (0 = silent; ipopt only)
+  bool progress = false;          ///< one line per iteration on stderr
+};
+
+/// Read a `solver:` section (strict: finishes it). Keys and ranges as documented in config/*.yaml.
+void readSolverSettings(centaur::YamlReader& section, SolverSettings& s);
+
+/// What a backend reports besides SolveInfo (for benchmarks; -1 / 0 when a backend cannot tell).
+struct SolveStats {
+  std::string backend;
+  int factorizations = -1;         ///< KKT factorizations, inertia-correction retries included
+  double derivative_time_s = 0.0;  ///< gradient, Jacobian and Hessian evaluations [s wall]
+  double function_time_s = 0.0;    ///< objective and constraint evaluations [s wall]
+  double factor_time_s = -1.0;     ///< KKT factorizations [s wall]
+  double linear_solve_time_s = -1.0;
+};
+
+struct SolveResult {
+  SolveInfo info;
+  Eigen::VectorXd z;  ///< the final iterate (also when not converged)
+  Eigen::VectorXd y;  ///< constraint multipliers (empty if the backend does not return them)
+  std::string ipopt_status;
+  SolveStats stats;
+};
+
+}  // namespace centaur::planner
