@@ -23,9 +23,9 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "planner/arm_flywheel_problem.hpp"
-#include "planner/arm_trajectory_io.hpp"
+#include "data/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
-#include "planner/primitive_io.hpp"
+#include "data/primitive_io.hpp"
 #include "sim/compare_pitch.hpp"
 #include "sim/compare_report.hpp"
 #include "sim/compare_runner.hpp"
@@ -92,11 +92,11 @@ std::vector<const sim::Scenario*> validate(const CompareArgs& a) {
     if (a.primitives.empty()) {
       planner::loadJumpConfig(jump, "", {});  // the jump can be planned
     } else {
-      planner::readPrimitive(a.primitives, jump);  // InputError naming the file and the available names
+      data::readPrimitive(a.primitives, jump);  // InputError naming the file and the available names
     }
     scenarios.push_back(s);
   }
-  if (!a.flywheel.empty()) planner::readArmTrajectory(a.flywheel);  // InputError naming the file and dataset
+  if (!a.flywheel.empty()) data::readArmTrajectory(a.flywheel);  // InputError naming the file and dataset
   return scenarios;
 }
 
@@ -114,14 +114,14 @@ std::string planFlywheel(const std::string& path, std::vector<std::string>& file
   const auto t0 = std::chrono::steady_clock::now();
   const planner::ArmFlywheelProblem problem(planner::loadArmFlywheelConfig("", {}));
   const planner::SolveResult result = problem.solve(false);
-  const planner::ArmTrajectory tr = problem.toTrajectory(result);
+  const data::ArmTrajectory tr = problem.toTrajectory(result);
   const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::fprintf(stderr, "compare: planned arm-flywheel: %s, %d iterations, %.1f s\n", result.info.status.c_str(),
                result.info.iterations, dt);
   if (!result.info.solved()) {
     std::fprintf(stderr, "compare: warning: arm-flywheel did not converge; its trajectory is used as it is\n");
   }
-  planner::writeArmTrajectory(path, tr, false);
+  data::writeArmTrajectory(path, tr, false);
   files.push_back(path);
   const fs::path f(path);
   const std::string sidecar = (f.parent_path() / (f.stem().string() + "." + tr.name + ".yaml")).string();
@@ -133,7 +133,7 @@ std::string planFlywheel(const std::string& path, std::vector<std::string>& file
 /// Plan every jump with its defaults into `path` (plus <stem>.<jump>.yaml); returns (name, status) pairs.
 std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std::string>& jumps,
                                                            const std::string& path, std::vector<std::string>& files) {
-  std::vector<planner::Primitive> prims;
+  std::vector<data::Primitive> prims;
   std::vector<std::pair<std::string, std::string>> status;
   for (const auto& jump : jumps) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -150,7 +150,7 @@ std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std
     }
     status.emplace_back(jump, result.info.status);
   }
-  planner::writePrimitives(path, prims, planner::WriteMode::Replace);
+  data::writePrimitives(path, prims, data::WriteMode::Replace);
   files.push_back(path);
   for (const auto& p : prims) {
     const fs::path f(path);

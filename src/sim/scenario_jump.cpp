@@ -7,8 +7,9 @@
 
 #include "common/error.hpp"
 #include "common/yaml_reader.hpp"
+#include "data/primitive_io.hpp"
 #include "planner/jump_problem.hpp"
-#include "planner/primitive_io.hpp"
+#include "sim/default_arm_flywheel.hpp"
 #include "sim/jump_observer.hpp"
 #include "sim/scenario.hpp"
 #include "stabilizers/jump_controller.hpp"
@@ -18,8 +19,8 @@ namespace centaur::sim {
 
 namespace {
 
-planner::Primitive loadOrPlan(const std::string& name, const std::string& file) {
-  if (!file.empty()) return planner::readPrimitive(file, name);
+data::Primitive loadOrPlan(const std::string& name, const std::string& file) {
+  if (!file.empty()) return data::readPrimitive(file, name);
   std::fprintf(stderr, "planning %s with the default settings (give --primitive F.h5 to reuse a plan) ...\n",
                name.c_str());
   const planner::JumpConfig cfg = planner::loadJumpConfig(name, "", {});
@@ -47,10 +48,10 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
     JumpControllerParams params;
     params.read(ctx.controller_config);
     std::unique_ptr<Stabilizer> stabilizer = makeStabilizer(ctx.options.at("stabilizer"), ctx.controller_config,
-                                                           ctx.options.at("flywheel"));
+                                                           ctx.options.at("flywheel"), defaultArmFlywheel);
     ctx.controller_config.finish();
     params.wbc.dt = ctx.robot.controlPeriodSeconds();
-    const planner::Primitive primitive = loadOrPlan(name, ctx.options.at("primitive"));
+    const data::Primitive primitive = loadOrPlan(name, ctx.options.at("primitive"));
     auto controller = std::make_unique<JumpController>(ctx.config.robot.model_path, primitive, std::move(stabilizer),
                                                        params);
     if (controller->wholeBody().ikModel().jointNames() != ctx.robot.jointNames()) {

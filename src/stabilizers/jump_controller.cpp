@@ -36,7 +36,7 @@ void JumpControllerParams::read(YamlReader& r) {
   readJointGains(g, wbc.impedance);
 }
 
-JumpController::JumpController(const std::string& mjcf_path, const planner::Primitive& primitive,
+JumpController::JumpController(const std::string& mjcf_path, const data::Primitive& primitive,
                                std::unique_ptr<Stabilizer> stabilizer, const JumpControllerParams& params)
     : params_(params), replay_(primitive), stabilizer_(std::move(stabilizer)) {
   if (!stabilizer_) throw InputError("jump controller: no stabilizer");

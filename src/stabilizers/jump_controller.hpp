@@ -56,7 +56,7 @@ struct JumpControllerParams {
 class JumpController final : public Controller {
  public:
   /// Builds the whole-body controller with the stabilizer's stack. Throws InputError (bad model, stack, primitive).
-  JumpController(const std::string& mjcf_path, const planner::Primitive& primitive,
+  JumpController(const std::string& mjcf_path, const data::Primitive& primitive,
                  std::unique_ptr<Stabilizer> stabilizer, const JumpControllerParams& params);
 
   void start(const RobotState& state, JointCommand& command) override;

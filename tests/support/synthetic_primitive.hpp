@@ -13,7 +13,7 @@
 #include <cmath>
 #include <string>
 
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
 namespace centaur::test {
 
@@ -37,10 +37,10 @@ struct SyntheticJump {
 };
 
 /// The synthetic jump; `offset` shifts every position in x (to tell two primitives apart).
-inline planner::Primitive makeSyntheticJump(const std::string& name, double offset = 0.0) {
+inline data::Primitive makeSyntheticJump(const std::string& name, double offset = 0.0) {
   using J = SyntheticJump;
   constexpr int n = 1001;
-  planner::Primitive p;
+  data::Primitive p;
   p.name = name;
   p.t.resize(n);
   p.q.resize(n, 19);

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-namespace centaur::planner {
+#include "data/row_matrix.hpp"
 
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+namespace centaur::data {
 
 /// How the solver ended; `status` is "solved" or the failure ("not_converged", "infeasible", ...).
 struct SolveInfo {
@@ -61,4 +61,4 @@ struct Primitive {
   Eigen::Index samples() const { return t.size(); }
 };
 
-}  // namespace centaur::planner
+}  // namespace centaur::data

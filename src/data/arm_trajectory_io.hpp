@@ -5,9 +5,9 @@
 // wrongly shaped file/dataset throws InputError naming the file and dataset.
 #include <string>
 
-#include "planner/arm_trajectory.hpp"
+#include "data/arm_trajectory.hpp"
 
-namespace centaur::planner {
+namespace centaur::data {
 
 /// Write the group `tr.name` to `path`. append = false: a new file holding only this group; append = true: the
 /// other groups of an existing file are kept (a group of the same name is replaced).
@@ -16,4 +16,4 @@ void writeArmTrajectory(const std::string& path, const ArmTrajectory& tr, bool a
 /// Read group `name` (default "arm-flywheel").
 ArmTrajectory readArmTrajectory(const std::string& path, const std::string& name = "arm-flywheel");
 
-}  // namespace centaur::planner
+}  // namespace centaur::data

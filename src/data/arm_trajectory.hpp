@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
-namespace centaur::planner {
+namespace centaur::data {
 
 struct ArmTrajectory {
   std::string name = "arm-flywheel";
@@ -53,4 +53,4 @@ inline Eigen::Matrix<double, 7, 1> armMirrorSigns() {
   return s;
 }
 
-}  // namespace centaur::planner
+}  // namespace centaur::data

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
-namespace centaur::planner {
+namespace centaur::data {
 
 struct TimeInterval {
   double start = 0.0;  ///< [s]
@@ -68,4 +68,4 @@ PrimitiveSummary summarize(const Primitive& p);
 /// Maximal runs of `flags[i] == value` as time intervals over `t` (same length).
 std::vector<TimeInterval> intervalsWhere(const Eigen::VectorXd& t, const std::vector<bool>& flags, bool value);
 
-}  // namespace centaur::planner
+}  // namespace centaur::data

@@ -1,4 +1,4 @@
-#include "planner/primitive_io.hpp"
+#include "data/primitive_io.hpp"
 
 #include <hdf5.h>
 
@@ -14,16 +14,15 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "data/hdf5.hpp"
 
-namespace centaur::planner {
+namespace centaur::data {
 namespace {
 
 constexpr hsize_t kNq = 19;     // template q: p(3), quat w,x,y,z (4), q_C (12)
 constexpr hsize_t kNv = 18;     // template nu: v(3), omega(3), qdot_C (12)
 constexpr hsize_t kFeet = 4;
 constexpr hsize_t kJoints = 12;
-constexpr hsize_t kChunkRows = 1024;
-constexpr unsigned kMaxCompactAttributes = 4096;
 
 // Group attributes the library owns; Primitive::scalars/vectors/strings may not use these names.
 const std::set<std::string>& reservedAttributes() {
@@ -34,155 +33,13 @@ const std::set<std::string>& reservedAttributes() {
   return names;
 }
 
-void silenceHdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
-
-herr_t innermostError(unsigned n, const H5E_error2_t* err, void* data) {
-  if (n == 0 && err != nullptr && err->desc != nullptr) *static_cast<std::string*>(data) = err->desc;
-  return 0;
-}
-
-/// The most specific message on HDF5's error stack ("" if none).
-std::string hdf5Message() {
-  std::string msg;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, innermostError, &msg);
-  return msg.empty() ? std::string() : " (HDF5: " + msg + ")";
-}
-
-/// Owns an HDF5 identifier and closes it with the matching H5?close.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle() = default;
-  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, -1)), closer_(o.closer_) {}
-  Handle& operator=(Handle&& o) noexcept {
-    if (this != &o) {
-      reset();
-      id_ = std::exchange(o.id_, -1);
-      closer_ = o.closer_;
-    }
-    return *this;
-  }
-  ~Handle() { reset(); }
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  /// Close now and report whether closing succeeded (a file flushes on close).
-  bool close() {
-    const herr_t rc = id_ >= 0 && closer_ != nullptr ? closer_(id_) : 0;
-    id_ = -1;
-    return rc >= 0;
-  }
-  void reset() {
-    if (id_ >= 0 && closer_ != nullptr) closer_(id_);
-    id_ = -1;
-  }
-
- private:
-  hid_t id_ = -1;
-  Closer closer_ = nullptr;
-};
-
-std::string shapeText(const std::vector<hsize_t>& dims) {
-  std::ostringstream s;
-  s << "(";
-  for (std::size_t i = 0; i < dims.size(); ++i) s << (i ? ", " : "") << dims[i];
-  s << ")";
-  return s.str();
-}
+using h5::Id;
+using Writer = h5::Writer;
+using Meta = h5::DatasetMeta;
 
 // =====================================================================================================
 // Writing
 // =====================================================================================================
-
-struct Meta {
-  const char* units;        ///< "units" attribute
-  const char* frame;        ///< "frame" attribute, nullptr if not applicable
-  const char* description;  ///< "description" attribute
-};
-
-class Writer {
- public:
-  explicit Writer(std::string target) : target_(std::move(target)) {}
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw RuntimeError("cannot write " + target_ + ": " + what + hdf5Message());
-  }
-  hid_t check(hid_t id, const std::string& what) const {
-    if (id < 0) fail(what);
-    return id;
-  }
-  void ok(herr_t rc, const std::string& what) const {
-    if (rc < 0) fail(what);
-  }
-
-  void stringAttribute(hid_t loc, const std::string& name, const std::string& value) const {
-    Handle type(check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
-    ok(H5Tset_size(type.get(), H5T_VARIABLE), "string type");
-    ok(H5Tset_cset(type.get(), H5T_CSET_UTF8), "string type");
-    Handle space(check(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
-    Handle attr(check(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                      "attribute '" + name + "'"),
-                H5Aclose);
-    const char* data = value.c_str();
-    ok(H5Awrite(attr.get(), type.get(), &data), "attribute '" + name + "'");
-  }
-
-  void doubleAttribute(hid_t loc, const std::string& name, double value) const {
-    Handle space(check(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
-    Handle attr(check(H5Acreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                      "attribute '" + name + "'"),
-                H5Aclose);
-    ok(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, &value), "attribute '" + name + "'");
-  }
-
-  void intAttribute(hid_t loc, const std::string& name, int value) const {
-    Handle space(check(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
-    Handle attr(check(H5Acreate2(loc, name.c_str(), H5T_STD_I32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                      "attribute '" + name + "'"),
-                H5Aclose);
-    ok(H5Awrite(attr.get(), H5T_NATIVE_INT, &value), "attribute '" + name + "'");
-  }
-
-  void vectorAttribute(hid_t loc, const std::string& name, const std::vector<double>& value) const {
-    const hsize_t n = value.size();
-    Handle space(check(H5Screate_simple(1, &n, nullptr), "dataspace"), H5Sclose);
-    Handle attr(check(H5Acreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                      "attribute '" + name + "'"),
-                H5Aclose);
-    if (n > 0) ok(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, value.data()), "attribute '" + name + "'");
-  }
-
-  /// A dataset of `dims` from contiguous row-major memory `data` (memory type `mem_type`).
-  void dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, hid_t file_type,
-               hid_t mem_type, const void* data, const Meta& meta) const {
-    Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace"),
-                 H5Sclose);
-    hsize_t total = 1;
-    for (hsize_t d : dims) total *= d;
-    Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "property list"), H5Pclose);
-    if (total > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
-      std::vector<hsize_t> chunk = dims;
-      chunk[0] = std::min<hsize_t>(dims[0], kChunkRows);
-      ok(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "chunking");
-      ok(H5Pset_shuffle(dcpl.get()), "shuffle filter");
-      ok(H5Pset_deflate(dcpl.get(), 4), "deflate filter");
-    }
-    Handle ds(check(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-                    "dataset '" + name + "'"),
-              H5Dclose);
-    if (total > 0) {
-      ok(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "dataset '" + name + "'");
-    }
-    stringAttribute(ds.get(), "units", meta.units);
-    if (meta.frame != nullptr) stringAttribute(ds.get(), "frame", meta.frame);
-    stringAttribute(ds.get(), "description", meta.description);
-  }
-
- private:
-  std::string target_;
-};
 
 /// Rows must equal `rows` and columns `cols` (cols 0 = any); otherwise the primitive is inconsistent.
 void requireShape(const Writer& w, const Primitive& p, const char* field, Eigen::Index rows, Eigen::Index cols,
@@ -212,15 +69,7 @@ void writeVector(const Writer& w, hid_t loc, const Primitive& p, const std::stri
 }
 
 void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
-  // Keep the group's attributes in compact storage (in the object header). HDF5 1.10 crashes in H5Ocopy
-  // (h5copy, h5py's Group.copy) on variable-length string attributes held in dense storage, which the
-  // library would otherwise switch to beyond 8 attributes. Strings live in the global heap, so compact
-  // storage has no practical size limit for them.
-  Handle gcpl(w.check(H5Pcreate(H5P_GROUP_CREATE), "property list"), H5Pclose);
-  w.ok(H5Pset_attr_phase_change(gcpl.get(), kMaxCompactAttributes, 0), "attribute storage");
-  Handle g(w.check(H5Gcreate2(file, p.name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
-                   "group '" + p.name + "'"),
-           H5Gclose);
+  Id g = w.createGroup(file, p.name);
   const hid_t gid = g.get();
   const Eigen::Index n = p.t.size();
   const std::vector<hsize_t> foot3{kFeet, 3};
@@ -264,13 +113,13 @@ void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
 
   // base_quat order attribute
   {
-    Handle ds(w.check(H5Dopen2(gid, "base_quat", H5P_DEFAULT), "dataset 'base_quat'"), H5Dclose);
+    Id ds(w.check(H5Dopen2(gid, "base_quat", H5P_DEFAULT), "dataset 'base_quat'"), H5Dclose);
     w.stringAttribute(ds.get(), "order", "w,x,y,z");
   }
 
   // knots
   {
-    Handle k(w.check(H5Gcreate2(gid, "knots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "group 'knots'"), H5Gclose);
+    Id k(w.check(H5Gcreate2(gid, "knots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "group 'knots'"), H5Gclose);
     const Eigen::Index nk = p.knot_t.size();
     const Eigen::Index ns = nk > 0 ? nk - 1 : 0;
     writeVector(w, k.get(), p, "t", p.knot_t, nk, {"s", nullptr, "node times t_k (N_s + 1)"});
@@ -327,13 +176,7 @@ void checkName(const std::string& target, const std::string& name) {
 
 void writeFile(const std::string& tmp, const std::string& target, const std::vector<const Primitive*>& prims) {
   const Writer w(target);
-  Handle fcpl(w.check(H5Pcreate(H5P_FILE_CREATE), "property list"), H5Pclose);
-  w.ok(H5Pset_link_creation_order(fcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), "creation order");
-  Handle fapl(w.check(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
-  // The 1.8 format: readable by HDF5 >= 1.8 (h5py, MATLAB) and stores large attributes (config_yaml) densely.
-  w.ok(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), "format version");
-  Handle file(w.check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), "cannot create " + tmp),
-              H5Fclose);
+  Id file = w.createFile(tmp);
   w.stringAttribute(file.get(), "format", "centaur-primitive");
   w.intAttribute(file.get(), "format_version", kPrimitiveFormatVersion);
   w.stringAttribute(file.get(), "description",
@@ -347,165 +190,26 @@ void writeFile(const std::string& tmp, const std::string& target, const std::vec
 // Reading
 // =====================================================================================================
 
-class Reader {
+/// The primitive file's reader: h5::Reader plus the group listing that skips other kinds of groups.
+class Reader : public h5::Reader {
  public:
-  explicit Reader(std::string path) : path_(std::move(path)) {
-    silenceHdf5();
-    std::error_code ec;
-    if (!std::filesystem::exists(path_, ec)) {
-      throw InputError(path_ + ": no such file (expected an HDF5 primitive file written by `centaur plan`)");
-    }
-    if (std::filesystem::is_directory(path_, ec)) throw InputError(path_ + ": is a directory, not an HDF5 file");
-    file_ = Handle(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-    if (!file_.valid()) {
-      throw InputError(path_ + ": not an HDF5 file or corrupt, cannot open it" + hdf5Message());
-    }
-  }
+  explicit Reader(const std::string& path)
+      : h5::Reader(path, "an HDF5 primitive file written by `centaur plan`") {}
 
-  hid_t file() const { return file_.get(); }
-  const std::string& path() const { return path_; }
-
-  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-    throw InputError(path_, key, message);
-  }
-
+  /// Lower-body primitive groups: other kinds of groups may share the file (e.g. an arm-flywheel
+  /// trajectory, attribute kind = "arm-trajectory"); lower-body primitives have no `kind` attribute.
   std::vector<std::string> groupNames() const {
-    std::vector<std::string> names;
-    hsize_t idx = 0;
-    herr_t rc = H5Literate(file(), H5_INDEX_CRT_ORDER, H5_ITER_INC, &idx, collectGroup, &names);
-    if (rc < 0) {  // files written without a creation-order index (e.g. by other tools): alphabetical
-      names.clear();
-      idx = 0;
-      rc = H5Literate(file(), H5_INDEX_NAME, H5_ITER_INC, &idx, collectGroup, &names);
-    }
-    if (rc < 0) throw InputError(path_ + ": cannot list the groups (corrupt file?)" + hdf5Message());
-    // Other kinds of groups may share the file (e.g. an arm-flywheel trajectory, attribute kind =
-    // "arm-trajectory"): lower-body primitives have no `kind` attribute.
     std::vector<std::string> primitives;
-    for (const std::string& n : names) {
-      Handle gid(H5Gopen2(file(), n.c_str(), H5P_DEFAULT), H5Gclose);
+    for (const std::string& n : childGroups(file())) {
+      Id gid(H5Gopen2(file(), n.c_str(), H5P_DEFAULT), H5Gclose);
       if (gid.valid() && H5Aexists(gid.get(), "kind") > 0) continue;
       primitives.push_back(n);
     }
     return primitives;
   }
-
-  /// Dataset `name` in `loc` as doubles (row-major). `want` gives the expected shape; 0 = any extent.
-  std::vector<double> doubles(hid_t loc, const std::string& key, const std::string& name,
-                              const std::vector<hsize_t>& want, std::vector<hsize_t>& dims) const {
-    if (H5Lexists(loc, name.c_str(), H5P_DEFAULT) <= 0) fail(key, "missing dataset");
-    Handle ds(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
-    if (!ds.valid()) fail(key, "cannot open dataset (not a dataset, or corrupt)" + hdf5Message());
-    Handle space(H5Dget_space(ds.get()), H5Sclose);
-    const int rank = space.valid() ? H5Sget_simple_extent_ndims(space.get()) : -1;
-    if (rank < 0) fail(key, "cannot read the dataspace (corrupt?)" + hdf5Message());
-    dims.assign(static_cast<std::size_t>(rank), 0);
-    if (rank > 0) H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-    bool ok = dims.size() == want.size();
-    for (std::size_t i = 0; ok && i < want.size(); ++i) ok = want[i] == 0 || want[i] == dims[i];
-    if (!ok) {
-      std::ostringstream s;
-      s << "dataset has shape " << shapeText(dims) << ", expected (";
-      for (std::size_t i = 0; i < want.size(); ++i) {
-        s << (i ? ", " : "") << (want[i] == 0 ? std::string(i == 0 ? "N" : "any") : std::to_string(want[i]));
-      }
-      s << ")";
-      fail(key, s.str());
-    }
-    Handle type(H5Dget_type(ds.get()), H5Tclose);
-    const H5T_class_t cls = type.valid() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
-    if (cls != H5T_FLOAT && cls != H5T_INTEGER) fail(key, "dataset is not numeric");
-    hsize_t total = 1;
-    for (hsize_t d : dims) total *= d;
-    std::vector<double> out(static_cast<std::size_t>(total));
-    if (total > 0 && H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
-      fail(key, "cannot read dataset (corrupt?)" + hdf5Message());
-    }
-    return out;
-  }
-
-  RowMatrix matrix(hid_t loc, const std::string& key, const std::string& name, std::vector<hsize_t> want) const {
-    std::vector<hsize_t> dims;
-    const std::vector<double> data = doubles(loc, key, name, want, dims);
-    const auto rows = static_cast<Eigen::Index>(dims.empty() ? 1 : dims[0]);
-    Eigen::Index cols = 1;
-    for (std::size_t i = 1; i < dims.size(); ++i) cols *= static_cast<Eigen::Index>(dims[i]);
-    RowMatrix m(rows, cols);
-    if (!data.empty()) std::copy(data.begin(), data.end(), m.data());
-    return m;
-  }
-
-  Eigen::VectorXd vector(hid_t loc, const std::string& key, const std::string& name, hsize_t want) const {
-    std::vector<hsize_t> dims;
-    const std::vector<double> data = doubles(loc, key, name, {want}, dims);
-    Eigen::VectorXd v(static_cast<Eigen::Index>(data.size()));
-    if (!data.empty()) std::copy(data.begin(), data.end(), v.data());
-    return v;
-  }
-
- private:
-  static herr_t collectGroup(hid_t loc, const char* name, const H5L_info_t* /*info*/, void* data) {
-    Handle obj(H5Oopen(loc, name, H5P_DEFAULT), H5Oclose);
-    if (obj.valid() && H5Iget_type(obj.get()) == H5I_GROUP) {
-      static_cast<std::vector<std::string>*>(data)->emplace_back(name);
-    }
-    return 0;
-  }
-
-  std::string path_;
-  Handle file_;
 };
 
-/// What one attribute holds, once read.
-struct AttributeValue {
-  enum Kind { kString, kScalar, kVector, kUnsupported } kind = kUnsupported;
-  std::string text;
-  std::vector<double> numbers;
-};
-
-AttributeValue readAttribute(hid_t attr) {
-  AttributeValue v;
-  Handle type(H5Aget_type(attr), H5Tclose);
-  Handle space(H5Aget_space(attr), H5Sclose);
-  if (!type.valid() || !space.valid()) return v;
-  const H5S_class_t sclass = H5Sget_simple_extent_type(space.get());
-  const H5T_class_t tclass = H5Tget_class(type.get());
-  if (tclass == H5T_STRING) {
-    if (sclass != H5S_SCALAR) return v;
-    if (H5Tis_variable_str(type.get()) > 0) {
-      Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
-      H5Tset_size(mem.get(), H5T_VARIABLE);
-      H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
-      char* buf = nullptr;
-      if (H5Aread(attr, mem.get(), &buf) < 0) return v;
-      v.text = buf != nullptr ? std::string(buf) : std::string();
-      H5free_memory(buf);
-    } else {
-      const std::size_t size = H5Tget_size(type.get());
-      std::vector<char> buf(size + 1, '\0');
-      if (H5Aread(attr, type.get(), buf.data()) < 0) return v;
-      v.text.assign(buf.data(), strnlen(buf.data(), size));
-    }
-    v.kind = AttributeValue::kString;
-    return v;
-  }
-  if (tclass != H5T_FLOAT && tclass != H5T_INTEGER) return v;
-  if (sclass == H5S_SCALAR) {
-    double x = 0.0;
-    if (H5Aread(attr, H5T_NATIVE_DOUBLE, &x) < 0) return v;
-    v.kind = AttributeValue::kScalar;
-    v.numbers = {x};
-    return v;
-  }
-  if (sclass == H5S_SIMPLE || sclass == H5S_NULL) {
-    const hssize_t n = sclass == H5S_NULL ? 0 : H5Sget_simple_extent_npoints(space.get());
-    if (n < 0 || (sclass == H5S_SIMPLE && H5Sget_simple_extent_ndims(space.get()) != 1)) return v;
-    v.numbers.resize(static_cast<std::size_t>(n));
-    if (n > 0 && H5Aread(attr, H5T_NATIVE_DOUBLE, v.numbers.data()) < 0) return v;
-    v.kind = AttributeValue::kVector;
-  }
-  return v;
-}
+using h5::AttributeValue;
 
 struct AttributeSink {
   Primitive* prim;
@@ -515,9 +219,9 @@ struct AttributeSink {
 herr_t collectAttribute(hid_t loc, const char* name, const H5A_info_t* /*info*/, void* data) {
   auto* sink = static_cast<AttributeSink*>(data);
   Primitive& p = *sink->prim;
-  Handle attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose);
+  Id attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose);
   if (!attr.valid()) return 0;
-  const AttributeValue v = readAttribute(attr.get());
+  const AttributeValue v = h5::readAttribute(attr.get());
   const std::string key(name);
   const bool is_string = v.kind == AttributeValue::kString;
   const bool is_scalar = v.kind == AttributeValue::kScalar;
@@ -554,8 +258,8 @@ herr_t collectAttribute(hid_t loc, const char* name, const H5A_info_t* /*info*/,
 }
 
 Primitive readGroup(const Reader& r, const std::string& name) {
-  Handle g(H5Gopen2(r.file(), name.c_str(), H5P_DEFAULT), H5Gclose);
-  if (!g.valid()) r.fail(name, "cannot open group (corrupt?)" + hdf5Message());
+  Id g(H5Gopen2(r.file(), name.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) r.fail(name, "cannot open group (corrupt?)" + h5::errorStackMessage());
   const hid_t gid = g.get();
   Primitive p;
   p.name = name;
@@ -580,8 +284,8 @@ Primitive readGroup(const Reader& r, const std::string& name) {
   p.tau = r.matrix(gid, k + "tau", "tau", {n, kJoints});
 
   if (H5Lexists(gid, "knots", H5P_DEFAULT) <= 0) r.fail(k + "knots", "missing group");
-  Handle knots(H5Gopen2(gid, "knots", H5P_DEFAULT), H5Gclose);
-  if (!knots.valid()) r.fail(k + "knots", "cannot open group (corrupt?)" + hdf5Message());
+  Id knots(H5Gopen2(gid, "knots", H5P_DEFAULT), H5Gclose);
+  if (!knots.valid()) r.fail(k + "knots", "cannot open group (corrupt?)" + h5::errorStackMessage());
   const std::string kk = k + "knots/";
   p.knot_t = r.vector(knots.get(), kk + "t", "t", 0);
   const auto nk = static_cast<hsize_t>(p.knot_t.size());
@@ -593,7 +297,7 @@ Primitive readGroup(const Reader& r, const std::string& name) {
   AttributeSink sink{&p, {}};
   hsize_t idx = 0;
   if (H5Aiterate2(gid, H5_INDEX_NAME, H5_ITER_INC, &idx, collectAttribute, &sink) < 0) {
-    r.fail(name, "cannot read the group attributes (corrupt?)" + hdf5Message());
+    r.fail(name, "cannot read the group attributes (corrupt?)" + h5::errorStackMessage());
   }
   if (!sink.bad.empty()) r.fail(k + sink.bad.front(), "attribute has the wrong type or value");
   return p;
@@ -606,7 +310,7 @@ Primitive readGroup(const Reader& r, const std::string& name) {
 // =====================================================================================================
 
 void writePrimitives(const std::string& path, const std::vector<Primitive>& prims, WriteMode mode) {
-  silenceHdf5();
+  const h5::QuietErrors quiet;
   std::set<std::string> seen;
   for (const Primitive& p : prims) {
     checkName(path, p.name);
@@ -667,4 +371,4 @@ Primitive readPrimitive(const std::string& path, const std::string& name) {
   return readGroup(r, name);
 }
 
-}  // namespace centaur::planner
+}  // namespace centaur::data

@@ -13,15 +13,15 @@
 #include <sstream>
 
 #include "common/error.hpp"
-#include "planner/primitive_io.hpp"
-#include "synthetic_primitive.hpp"
+#include "data/primitive_io.hpp"
+#include "support/synthetic_primitive.hpp"
 
 namespace fs = std::filesystem;
 using centaur::InputError;
 using centaur::RuntimeError;
-using centaur::planner::Primitive;
-using centaur::planner::WriteMode;
-namespace planner = centaur::planner;
+using centaur::data::Primitive;
+using centaur::data::WriteMode;
+namespace data = centaur::data;
 
 namespace {
 
@@ -102,13 +102,13 @@ TEST(PrimitiveIo, RoundTripPreservesEveryDatasetAndAttribute) {
   TempDir dir;
   const Primitive jump = centaur::test::makeSyntheticJump("squat-jump");
   const std::string path = dir.file("jump.h5");
-  planner::writePrimitives(path, {jump}, WriteMode::Replace);
+  data::writePrimitives(path, {jump}, WriteMode::Replace);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"jump.h5"});  // no temporary left behind
-  EXPECT_EQ(planner::listPrimitives(path), std::vector<std::string>{"squat-jump"});
-  const std::vector<Primitive> back = planner::readPrimitives(path);
+  EXPECT_EQ(data::listPrimitives(path), std::vector<std::string>{"squat-jump"});
+  const std::vector<Primitive> back = data::readPrimitives(path);
   ASSERT_EQ(back.size(), 1u);
   expectSame(jump, back[0]);
-  expectSame(jump, planner::readPrimitive(path, "squat-jump"));
+  expectSame(jump, data::readPrimitive(path, "squat-jump"));
 }
 
 TEST(PrimitiveIo, EmptyKnotsAndLargeConfigRoundTrip) {
@@ -125,8 +125,8 @@ TEST(PrimitiveIo, EmptyKnotsAndLargeConfigRoundTrip) {
   p.config_yaml = yaml.str();
   ASSERT_GT(p.config_yaml.size(), 100000u);
   const std::string path = dir.file("bare.h5");
-  planner::writePrimitive(path, p);
-  expectSame(p, planner::readPrimitive(path, "bare"));
+  data::writePrimitive(path, p);
+  expectSame(p, data::readPrimitive(path, "bare"));
 }
 
 TEST(PrimitiveIo, AppendAddsGroupsKeepsOthersAndReplacesSameName) {
@@ -135,25 +135,25 @@ TEST(PrimitiveIo, AppendAddsGroupsKeepsOthersAndReplacesSameName) {
   const Primitive a = centaur::test::makeSyntheticJump("squat-jump");
   const Primitive b = centaur::test::makeSyntheticJump("half-squat-jump", 1.0);
   // Append to a missing file creates it.
-  planner::writePrimitives(path, {a}, WriteMode::Append);
-  planner::writePrimitives(path, {b}, WriteMode::Append);
-  EXPECT_EQ(planner::listPrimitives(path), (std::vector<std::string>{"squat-jump", "half-squat-jump"}));
-  expectSame(a, planner::readPrimitive(path, "squat-jump"));
-  expectSame(b, planner::readPrimitive(path, "half-squat-jump"));
+  data::writePrimitives(path, {a}, WriteMode::Append);
+  data::writePrimitives(path, {b}, WriteMode::Append);
+  EXPECT_EQ(data::listPrimitives(path), (std::vector<std::string>{"squat-jump", "half-squat-jump"}));
+  expectSame(a, data::readPrimitive(path, "squat-jump"));
+  expectSame(b, data::readPrimitive(path, "half-squat-jump"));
 
   // Replace the first group in place: same position, new content, the other group untouched.
   Primitive a2 = centaur::test::makeSyntheticJump("squat-jump", 2.0);
   a2.solve.status = "not_converged";
   a2.scalars["target_height"] = 0.3;
-  planner::writePrimitives(path, {a2}, WriteMode::Append);
-  EXPECT_EQ(planner::listPrimitives(path), (std::vector<std::string>{"squat-jump", "half-squat-jump"}));
-  expectSame(a2, planner::readPrimitive(path, "squat-jump"));
-  expectSame(b, planner::readPrimitive(path, "half-squat-jump"));
+  data::writePrimitives(path, {a2}, WriteMode::Append);
+  EXPECT_EQ(data::listPrimitives(path), (std::vector<std::string>{"squat-jump", "half-squat-jump"}));
+  expectSame(a2, data::readPrimitive(path, "squat-jump"));
+  expectSame(b, data::readPrimitive(path, "half-squat-jump"));
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"db.h5"});
 
   // Replace mode drops everything else.
-  planner::writePrimitives(path, {b}, WriteMode::Replace);
-  EXPECT_EQ(planner::listPrimitives(path), std::vector<std::string>{"half-squat-jump"});
+  data::writePrimitives(path, {b}, WriteMode::Replace);
+  EXPECT_EQ(data::listPrimitives(path), std::vector<std::string>{"half-squat-jump"});
 }
 
 TEST(PrimitiveIo, GroupsOfAnotherKindAreNotPrimitives) {
@@ -161,7 +161,7 @@ TEST(PrimitiveIo, GroupsOfAnotherKindAreNotPrimitives) {
   TempDir dir;
   const std::string path = dir.file("db.h5");
   const Primitive a = centaur::test::makeSyntheticJump("squat-jump");
-  planner::writePrimitives(path, {a});
+  data::writePrimitives(path, {a});
   {
     const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     ASSERT_GE(f, 0);
@@ -177,9 +177,9 @@ TEST(PrimitiveIo, GroupsOfAnotherKindAreNotPrimitives) {
     H5Gclose(g);
     H5Fclose(f);
   }
-  EXPECT_EQ(planner::listPrimitives(path), std::vector<std::string>{"squat-jump"});
-  ASSERT_EQ(planner::readPrimitives(path).size(), 1u);
-  EXPECT_THROW(planner::readPrimitive(path, "arm-flywheel"), InputError);
+  EXPECT_EQ(data::listPrimitives(path), std::vector<std::string>{"squat-jump"});
+  ASSERT_EQ(data::readPrimitives(path).size(), 1u);
+  EXPECT_THROW(data::readPrimitive(path, "arm-flywheel"), InputError);
 }
 
 TEST(PrimitiveIo, UnwritableLocationThrowsAndLeavesNothing) {
@@ -187,14 +187,14 @@ TEST(PrimitiveIo, UnwritableLocationThrowsAndLeavesNothing) {
   const std::string blocker = dir.file("not-a-directory");
   std::ofstream(blocker) << "a regular file";
   const Primitive p = centaur::test::makeSyntheticJump("squat-jump");
-  EXPECT_THROW(planner::writePrimitive(blocker + "/sub/out.h5", p), RuntimeError);
+  EXPECT_THROW(data::writePrimitive(blocker + "/sub/out.h5", p), RuntimeError);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"not-a-directory"});
 
   if (::geteuid() != 0) {  // permissions do not stop root
     const std::string locked = dir.file("locked");
     fs::create_directory(locked);
     fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
-    EXPECT_THROW(planner::writePrimitive(locked + "/out.h5", p), RuntimeError);
+    EXPECT_THROW(data::writePrimitive(locked + "/out.h5", p), RuntimeError);
     fs::permissions(locked, fs::perms::owner_all);
     EXPECT_TRUE(fs::is_empty(locked));
   }
@@ -209,7 +209,7 @@ TEST(PrimitiveIo, FailureHalfwayRemovesTheTemporaryAndKeepsTheOldFile) {
 
   // New file: nothing at all is left.
   try {
-    planner::writePrimitives(path, {good, bad});
+    data::writePrimitives(path, {good, bad});
     ADD_FAILURE() << "no exception";
   } catch (const RuntimeError& e) {
     EXPECT_NE(std::string(e.what()).find("force"), std::string::npos) << e.what();
@@ -218,20 +218,20 @@ TEST(PrimitiveIo, FailureHalfwayRemovesTheTemporaryAndKeepsTheOldFile) {
   EXPECT_TRUE(dir.entries().empty());
 
   // Existing file: untouched, byte for byte, in both modes.
-  planner::writePrimitives(path, {good});
+  data::writePrimitives(path, {good});
   const std::string before = readBytes(path);
-  EXPECT_THROW(planner::writePrimitives(path, {bad}, WriteMode::Append), RuntimeError);
-  EXPECT_THROW(planner::writePrimitives(path, {good, bad}, WriteMode::Replace), RuntimeError);
+  EXPECT_THROW(data::writePrimitives(path, {bad}, WriteMode::Append), RuntimeError);
+  EXPECT_THROW(data::writePrimitives(path, {good, bad}, WriteMode::Replace), RuntimeError);
   Primitive odd_contact = good;
   odd_contact.contact(5, 2) = 0.5;
-  EXPECT_THROW(planner::writePrimitives(path, {odd_contact}), RuntimeError);
+  EXPECT_THROW(data::writePrimitives(path, {odd_contact}), RuntimeError);
   Primitive reserved = good;
   reserved.scalars["solve_time_s"] = 1.0;
-  EXPECT_THROW(planner::writePrimitives(path, {reserved}), RuntimeError);
-  EXPECT_THROW(planner::writePrimitives(path, {good, good}), RuntimeError);  // duplicate name
+  EXPECT_THROW(data::writePrimitives(path, {reserved}), RuntimeError);
+  EXPECT_THROW(data::writePrimitives(path, {good, good}), RuntimeError);  // duplicate name
   Primitive unnamed = good;
   unnamed.name = "a/b";
-  EXPECT_THROW(planner::writePrimitives(path, {unnamed}), RuntimeError);
+  EXPECT_THROW(data::writePrimitives(path, {unnamed}), RuntimeError);
   EXPECT_EQ(readBytes(path), before);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"db.h5"});
 }
@@ -241,68 +241,68 @@ TEST(PrimitiveIo, FailedRenameRemovesTheTemporary) {
   const std::string target = dir.file("occupied");
   fs::create_directory(target);
   std::ofstream(target + "/keep") << "x";  // a non-empty directory cannot be renamed over
-  EXPECT_THROW(planner::writePrimitive(target, centaur::test::makeSyntheticJump("j")), RuntimeError);
+  EXPECT_THROW(data::writePrimitive(target, centaur::test::makeSyntheticJump("j")), RuntimeError);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"occupied"});
 }
 
 TEST(PrimitiveIo, MissingOrForeignFilesGiveInputErrorsNamingThem) {
   TempDir dir;
   const std::string missing = dir.file("missing.h5");
-  std::string msg = inputErrorOf([&] { planner::readPrimitives(missing); });
+  std::string msg = inputErrorOf([&] { data::readPrimitives(missing); });
   EXPECT_NE(msg.find(missing), std::string::npos) << msg;
   EXPECT_NE(msg.find("no such file"), std::string::npos) << msg;
-  msg = inputErrorOf([&] { planner::listPrimitives(missing); });
+  msg = inputErrorOf([&] { data::listPrimitives(missing); });
   EXPECT_NE(msg.find(missing), std::string::npos) << msg;
 
   const std::string text = dir.file("notes.h5");
   std::ofstream(text) << "this is not HDF5\n";
-  msg = inputErrorOf([&] { planner::readPrimitives(text); });
+  msg = inputErrorOf([&] { data::readPrimitives(text); });
   EXPECT_NE(msg.find(text), std::string::npos) << msg;
   EXPECT_NE(msg.find("not an HDF5 file"), std::string::npos) << msg;
 
   // Append onto a foreign file refuses to clobber it.
-  EXPECT_THROW(planner::writePrimitive(text, centaur::test::makeSyntheticJump("j"), WriteMode::Append), InputError);
+  EXPECT_THROW(data::writePrimitive(text, centaur::test::makeSyntheticJump("j"), WriteMode::Append), InputError);
   EXPECT_EQ(readBytes(text), "this is not HDF5\n");
 
   // A truncated (corrupt) primitive file.
   const std::string good = dir.file("good.h5");
-  planner::writePrimitive(good, centaur::test::makeSyntheticJump("squat-jump"));
+  data::writePrimitive(good, centaur::test::makeSyntheticJump("squat-jump"));
   const std::string bytes = readBytes(good);
   const std::string cut = dir.file("cut.h5");
   std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
-  msg = inputErrorOf([&] { planner::readPrimitives(cut); });
+  msg = inputErrorOf([&] { data::readPrimitives(cut); });
   EXPECT_NE(msg.find(cut), std::string::npos) << msg;
 }
 
 TEST(PrimitiveIo, MissingOrMisshapenDatasetGivesInputErrorNamingIt) {
   TempDir dir;
   const std::string path = dir.file("db.h5");
-  planner::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+  data::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
 
   deleteLink(path, "squat-jump/foot_pos");
-  std::string msg = inputErrorOf([&] { planner::readPrimitives(path); });
+  std::string msg = inputErrorOf([&] { data::readPrimitives(path); });
   EXPECT_NE(msg.find(path), std::string::npos) << msg;
   EXPECT_NE(msg.find("squat-jump/foot_pos"), std::string::npos) << msg;
   EXPECT_NE(msg.find("missing dataset"), std::string::npos) << msg;
 
-  planner::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+  data::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
   deleteLink(path, "squat-jump/knots/dt");
-  msg = inputErrorOf([&] { planner::readPrimitive(path, "squat-jump"); });
+  msg = inputErrorOf([&] { data::readPrimitive(path, "squat-jump"); });
   EXPECT_NE(msg.find("squat-jump/knots/dt"), std::string::npos) << msg;
 
-  planner::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+  data::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
   replaceDataset(path, "squat-jump/tau", {1001, 11});
-  msg = inputErrorOf([&] { planner::readPrimitives(path); });
+  msg = inputErrorOf([&] { data::readPrimitives(path); });
   EXPECT_NE(msg.find("squat-jump/tau"), std::string::npos) << msg;
   EXPECT_NE(msg.find("(1001, 11)"), std::string::npos) << msg;
   EXPECT_NE(msg.find("expected (1001, 12)"), std::string::npos) << msg;
 
-  planner::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+  data::writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
   replaceDataset(path, "squat-jump/base_vel", {1000, 3});  // one row short of t
-  msg = inputErrorOf([&] { planner::readPrimitives(path); });
+  msg = inputErrorOf([&] { data::readPrimitives(path); });
   EXPECT_NE(msg.find("squat-jump/base_vel"), std::string::npos) << msg;
 
-  msg = inputErrorOf([&] { planner::readPrimitive(path, "backflip"); });
+  msg = inputErrorOf([&] { data::readPrimitive(path, "backflip"); });
   EXPECT_NE(msg.find("backflip"), std::string::npos) << msg;
   EXPECT_NE(msg.find("squat-jump"), std::string::npos) << msg;  // lists what is there
 }
@@ -315,7 +315,7 @@ TEST(PrimitiveIo, GroupsCopyWithOtherToolsAndForeignFilesRead) {
   const std::string src = dir.file("src.h5");
   const Primitive a = centaur::test::makeSyntheticJump("squat-jump");
   const Primitive b = centaur::test::makeSyntheticJump("half-squat-jump", 1.0);
-  planner::writePrimitives(src, {a, b});
+  data::writePrimitives(src, {a, b});
   const std::string dst = dir.file("copy.h5");
   const hid_t in = H5Fopen(src.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   const hid_t out = H5Fcreate(dst.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
@@ -325,7 +325,7 @@ TEST(PrimitiveIo, GroupsCopyWithOtherToolsAndForeignFilesRead) {
   EXPECT_GE(H5Ocopy(in, "half-squat-jump", out, "half-squat-jump", H5P_DEFAULT, H5P_DEFAULT), 0);
   H5Fclose(out);
   H5Fclose(in);
-  EXPECT_EQ(planner::listPrimitives(dst), (std::vector<std::string>{"half-squat-jump", "squat-jump"}));
-  expectSame(a, planner::readPrimitive(dst, "squat-jump"));
-  expectSame(b, planner::readPrimitive(dst, "half-squat-jump"));
+  EXPECT_EQ(data::listPrimitives(dst), (std::vector<std::string>{"half-squat-jump", "squat-jump"}));
+  expectSame(a, data::readPrimitive(dst, "squat-jump"));
+  expectSame(b, data::readPrimitive(dst, "half-squat-jump"));
 }

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "planner/primitive_summary.hpp"
-#include "synthetic_primitive.hpp"
+#include "data/primitive_summary.hpp"
+#include "support/synthetic_primitive.hpp"
 
-using centaur::planner::summarize;
+using centaur::data::summarize;
 using centaur::test::SyntheticJump;
 
 namespace {

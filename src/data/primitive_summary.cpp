@@ -1,10 +1,10 @@
-#include "planner/primitive_summary.hpp"
+#include "data/primitive_summary.hpp"
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-namespace centaur::planner {
+namespace centaur::data {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -120,4 +120,4 @@ PrimitiveSummary summarize(const Primitive& p) {
   return s;
 }
 
-}  // namespace centaur::planner
+}  // namespace centaur::data

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
-namespace centaur::planner {
+namespace centaur::data {
 
 enum class WriteMode {
   Replace,  ///< create a new file holding exactly `prims` (an existing file is replaced)
@@ -43,4 +43,4 @@ std::vector<Primitive> readPrimitives(const std::string& path);
 /// One primitive by name; InputError naming the file and listing the available names if absent.
 Primitive readPrimitive(const std::string& path, const std::string& name);
 
-}  // namespace centaur::planner
+}  // namespace centaur::data
