@@ -48,9 +48,6 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
   state.resize(n);
   JointCommand command;
   command.resize(n);
-  robot.read(state);
-  controller.start(state, command);
-  robot.write(command);
 
   std::unique_ptr<SimLog> log;
   if (!out.log_path.empty()) {
@@ -116,11 +113,22 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
     const bool log_now = log && k % config.log_decimation == 0;
     if (log_now) log->appendTruth(robot);
     const auto w0 = std::chrono::steady_clock::now();
-    robot.controlPeriod(controller, state, command);
-    const double period = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    double start_s = 0.0;  // controller.start() allocates: not part of the loop's timing
+    if (k == 0) {  // the controller starts on the first period's measurement, then ticks on it (as a node does)
+      robot.beginPeriod(state);
+      controller.start(state, command);
+      const auto t0 = std::chrono::steady_clock::now();
+      start_s = std::chrono::duration<double>(t0 - w0).count();
+      controller.tick(state, command);
+      tick_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      robot.endPeriod(command);
+    } else {
+      robot.controlPeriod(controller, state, command);
+      tick_s.push_back(robot.lastTickSeconds());
+    }
+    const double period = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count() - start_s;
     wall += period;
     period_s.push_back(period);
-    tick_s.push_back(robot.lastTickSeconds());
     if (log_now) log->appendLoop(robot, state, command);
     if (observer) observer->observe(robot, state, command);
   }
