@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/stats.hpp"
@@ -23,6 +25,25 @@ void rollPitch(const Eigen::Quaterniond& q, double& roll, double& pitch) {
   const Eigen::Matrix3d R = q.toRotationMatrix();
   pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
   roll = std::atan2(R(2, 1), R(2, 2));
+}
+
+/// The run's outcome and metrics as recorded in its log (attribute `summary`, read by `centaur report`): the
+/// numbers of `simulate --json` that depend only on the simulation (no wall times, no file names), so identical
+/// runs still write identical logs.
+std::string recordedSummaryJson(const RunSummary& s) {
+  nlohmann::json j;
+  j["outcome"] = s.outcome;
+  j["duration_s"] = s.duration_s;
+  j["fall_time_s"] = s.fall_time_s >= 0.0 ? nlohmann::json(s.fall_time_s) : nlohmann::json(nullptr);
+  j["pelvis_drift_m"] = s.pelvis_drift_m;
+  j["final_pelvis_height_m"] = s.final_pelvis_height_m;
+  j["peak_pitch_deg"] = s.peak_pitch_deg;
+  j["peak_roll_deg"] = s.peak_roll_deg;
+  j["max_joint_limit_violation"] = s.max_joint_limit_violation;
+  j["max_torque_ratio"] = s.max_torque_ratio;
+  j["control_periods"] = s.control_periods;
+  for (const auto& [name, value] : s.extra) j[name] = value;
+  return j.dump();
 }
 }  // namespace
 
@@ -151,7 +172,7 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
     writeTextFileAtomic(configPathFor(out.snapshot_path), config_yaml);
   }
   if (log) {
-    log->writeHdf5(out.log_path, config_yaml, scenario_name);
+    log->writeHdf5(out.log_path, config_yaml, scenario_name, recordedSummaryJson(sum));
     sum.files.push_back(out.log_path);
     writeTextFileAtomic(configPathFor(out.log_path), config_yaml);
   }
