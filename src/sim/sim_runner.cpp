@@ -27,25 +27,25 @@ void rollPitch(const Eigen::Quaterniond& q, double& roll, double& pitch) {
   roll = std::atan2(R(2, 1), R(2, 2));
 }
 
-/// The run's outcome and metrics as recorded in its log (attribute `summary`, read by `centaur report`): the
-/// numbers of `simulate --json` that depend only on the simulation (no wall times, no file names), so identical
-/// runs still write identical logs.
-std::string recordedSummaryJson(const RunSummary& s) {
+}  // namespace
+
+nlohmann::json summaryJson(const RunSummary& s) {
   nlohmann::json j;
   j["outcome"] = s.outcome;
   j["duration_s"] = s.duration_s;
   j["fall_time_s"] = s.fall_time_s >= 0.0 ? nlohmann::json(s.fall_time_s) : nlohmann::json(nullptr);
   j["pelvis_drift_m"] = s.pelvis_drift_m;
+  j["pelvis_drift_xy_m"] = s.pelvis_drift_xy_m;
   j["final_pelvis_height_m"] = s.final_pelvis_height_m;
   j["peak_pitch_deg"] = s.peak_pitch_deg;
   j["peak_roll_deg"] = s.peak_roll_deg;
   j["max_joint_limit_violation"] = s.max_joint_limit_violation;
   j["max_torque_ratio"] = s.max_torque_ratio;
   j["control_periods"] = s.control_periods;
-  for (const auto& [name, value] : s.extra) j[name] = value;
-  return j.dump();
+  j["physics_steps"] = s.physics_steps;
+  for (const auto& [name, value] : s.extra) j[name] = value;  // scenario-specific numbers
+  return j;
 }
-}  // namespace
 
 std::string configPathFor(const std::string& output_path) {
   std::filesystem::path p(output_path);
@@ -172,7 +172,7 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
     writeTextFileAtomic(configPathFor(out.snapshot_path), config_yaml);
   }
   if (log) {
-    log->writeHdf5(out.log_path, config_yaml, scenario_name, recordedSummaryJson(sum));
+    log->writeHdf5(out.log_path, config_yaml, scenario_name, summaryJson(sum).dump());
     sum.files.push_back(out.log_path);
     writeTextFileAtomic(configPathFor(out.log_path), config_yaml);
   }

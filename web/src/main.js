@@ -73,10 +73,23 @@ class Report {
     this.tmpA = new THREE.Vector3();
     this.tmpB = new THREE.Vector3();
     this.bindControls();
-    this.selectRun(0);
+    // First frame first: the 3D view of run 0 is drawn before the plots and the panel are built.
+    this.selectRun(0, false);
+    this.view.render();
+    this.view.renderer.getContext().finish();  // the frame is drawn, not only queued
+    this.firstFrameMs = performance.now();
+    this.ready = false;
+    setTimeout(() => { this.showDetails(); this.ready = true; }, 0);
     window.addEventListener('resize', () => { this.view.dirty = true; this.plots.resize(); });
     this.lastTick = null;
     requestAnimationFrame((ts) => this.tick(ts));
+  }
+
+  /** Plots and metadata of the current run. */
+  showDetails() {
+    this.plots.show(this.run);
+    showMetadata(this.$('meta'), this.run);
+    this.plots.setTime(this.time);
   }
 
   bindControls() {
@@ -97,7 +110,7 @@ class Report {
     });
   }
 
-  selectRun(i) {
+  selectRun(i, details = true) {
     this.index = i;
     this.run = this.data.runs[i];
     if (!this.decoded.has(i)) this.decoded.set(i, decodeRun(this.run));
@@ -117,8 +130,7 @@ class Report {
     }
     if (this.run.ghost) this.view.ghost.configure(this.run.ghost);
     this.view.lastFollow = null;
-    this.plots.show(this.run);
-    showMetadata(this.$('meta'), this.run);
+    if (details) this.showDetails();
     this.legend();
     this.seek(Math.min(Math.max(this.time, this.d.t0), this.d.t1));
   }
@@ -229,17 +241,17 @@ class Report {
     }
     this.lastTick = ts;
     this.adapt(ts);
-    if (this.view.dirty) {
-      this.view.render();
-      if (this.firstFrameMs === null) this.firstFrameMs = performance.now();
-    }
+    if (this.view.dirty) this.view.render();
     requestAnimationFrame((t) => this.tick(t));
   }
 }
 
 function start() {
+  const t0 = performance.now();
   const data = JSON.parse(document.getElementById('centaur-report-data').textContent);
+  const t1 = performance.now();
   const report = new Report(data);
+  report.timing = { start_ms: t0, parsed_ms: t1, built_ms: performance.now() };
   window.centaurReport = api(report);
 }
 
@@ -259,6 +271,8 @@ function api(r) {
     renderScale: () => r.view.scale,
     range: () => [r.d.t0, r.d.t1],
     firstFrameMs: () => r.firstFrameMs,
+    ready: () => r.ready,
+    timing: () => Object.assign({ first_frame_ms: r.firstFrameMs }, r.timing),
     framesRendered: () => r.view.frames,
     renderNow: () => r.view.render(),
     pelvis: () => (r.run.frames ? r.view.world.bodies[0].position.toArray() : null),

@@ -72,8 +72,7 @@ async function probePage(browser, spec, artifacts) {
   });
   const t0 = Date.now();
   await page.goto(url, { waitUntil: 'load' });
-  await page.waitForFunction(() => window.centaurReport && window.centaurReport.firstFrameMs() !== null,
-    null, { timeout: 60000 });
+  await page.waitForFunction(() => window.centaurReport && window.centaurReport.ready(), null, { timeout: 60000 });
   out.load_ms = Date.now() - t0;
   out.first_frame_ms = await page.evaluate(() => window.centaurReport.firstFrameMs());
   out.runs = await page.evaluate(() => window.centaurReport.runs());
