@@ -82,7 +82,7 @@ export class Plots {
     const inside = Number.isFinite(x) && x >= 0 && x <= p.width;
     p.x = Number.isFinite(x) ? x : 0;
     p.cursor.style.visibility = inside ? 'visible' : 'hidden';
-    p.cursor.style.transform = `translateX(${p.x.toFixed(1)}px)`;
+    p.cursor.style.left = `${Math.round(p.x)}px`;
   }
 
   /** Position [CSS px from the plotting area's left] of the replay cursor of plot `id` (test hook). */
