@@ -3,7 +3,8 @@
 // one launch for every page). From a real squat jump (planned, then simulated 2.6 s: through the flight), a small
 // comparison (2 runs) and the plan alone: no console error, no network request, the WebGL canvas is not blank,
 // seeking to the flight phase changes the picture and puts the pelvis where the log has it (1 mm), the ghost
-// where the plan has it, the pitch cursor follows the replay, the run selector switches runs. Screenshots are
+// where the plan has it, the pitch cursor follows the replay, a click in a plot seeks, the run selector switches
+// runs. Screenshots are
 // kept in <build>/tests/report/artifacts/.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -113,7 +114,8 @@ TEST(ReportBrowser, PagesOfARealSquatJumpAComparisonAndAPlan) {
   const nlohmann::json spec = {
       {"chromium", "/usr/bin/chromium"}, {"artifacts", art},
       {"pages", {{{"name", "jump"}, {"file", dir.file("jump.html")}, {"times", {t_stand, t_fly, t_fly + 0.005}},
-                  {"screenshots", {{"stand", t_stand}, {"flight", t_fly}}}, {"play_from", 0.5}, {"play_seconds", 1.0}},
+                  {"screenshots", {{"stand", t_stand}, {"flight", t_fly}}}, {"play_from", 0.5}, {"play_seconds", 1.0},
+                  {"click_plot", 0.75}},
                  {{"name", "compare"}, {"file", cmp + "/report.html"}, {"runs_switch", {{"times", {t_diff}}}}},
                  {{"name", "plan"}, {"file", dir.file("plan.html")}, {"times", {t_fly}},
                   {"screenshots", {{"flight", t_fly}}}}}}};
@@ -148,6 +150,10 @@ TEST(ReportBrowser, PagesOfARealSquatJumpAComparisonAndAPlan) {
   EXPECT_GT(p["play"]["after"]["time"].get<double>(), p["play"]["before"]["time"].get<double>() + 0.05);
   EXPECT_GT(p["play"]["after"]["cursor_left"].get<double>(), p["play"]["before"]["cursor_left"].get<double>() + 2.0);
   EXPECT_EQ(p["plots"], nlohmann::json({"pitch", "force", "torque"}));
+  // a click at 3/4 of the pitch plot's width seeks to 3/4 of the run (the x axis spans the log's time range)
+  const double t0 = p["click"]["range"][0], t1 = p["click"]["range"][1];
+  EXPECT_NEAR(p["click"]["time"].get<double>(), t0 + 0.75 * (t1 - t0), 0.02 * (t1 - t0));
+  EXPECT_NEAR(p["click"]["cursor_left"].get<double>(), 0.75 * p["click"]["width"].get<double>(), 3.0);
 
   // the comparison: two runs, the selector shows each run's own motion
   const nlohmann::json& c = result["pages"][1];

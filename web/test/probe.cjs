@@ -3,7 +3,7 @@
 // page) and records what the browser tests and the benchmark assert on. SPEC:
 //   {"chromium": "/usr/bin/chromium", "artifacts": DIR, "pages": [{"name", "file", "times": [t...],
 //    "screenshots": {"label": t}, "play_from": t, "play_seconds": S, "runs_switch": {"times": [t...]},
-//    "fps_seconds": S, "reloads": N}]}
+//    "click_plot": fraction of the pitch plot's width, "fps_seconds": S, "reloads": N}]}
 // RESULT: {"pages": [{"name", "load_ms", "first_frame_ms", "console_errors", "page_errors", "requests",
 //   "runs", "start": {...}, "probes": [{"t", "time", "pelvis", "ghost", "cursor_left", "stats"}],
 //   "play": {...}, "switch": [...], "fps_full", "fps_adaptive", "reload_first_frame_ms"}]}
@@ -93,6 +93,16 @@ async function probePage(browser, spec, artifacts) {
       return { time: r.time(), cursor_left: r.cursorLeft('pitch') };
     });
     out.play = { before: { time: a.time, cursor_left: a.cursor_left }, after: b };
+  }
+  if (spec.click_plot) {  // a click in the pitch plot seeks the replay to the clicked time
+    await page.evaluate(() => window.centaurReport.seek(window.centaurReport.range()[0]));
+    const over = page.locator('.plot[data-plot="pitch"] .u-over');
+    const box = await over.boundingBox();
+    await over.click({ position: { x: spec.click_plot * box.width, y: 0.5 * box.height } });
+    await nextFrames(page);
+    out.click = await page.evaluate(() => ({ time: window.centaurReport.time(), range: window.centaurReport.range(),
+      cursor_left: window.centaurReport.cursorLeft('pitch') }));
+    out.click.width = box.width;
   }
   if (spec.runs_switch) {
     out.switch = [];
