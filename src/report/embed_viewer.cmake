@@ -1,6 +1,10 @@
 # cmake -DIN=<bundle.js> -DTEMPLATE=<viewer_asset.cpp.in> -DOUT=<viewer_asset.cpp> -P embed_viewer.cmake
 # Puts the bundled viewer into a C++ raw string literal; refuses a bundle that could not sit inside an HTML
 # <script> element or the literal.
+if(NOT EXISTS "${IN}")
+  message(FATAL_ERROR "${IN}: the bundled report viewer is missing (target centaur_viewer_bundle: npm ci and esbuild "
+                      "in <build>/web; see docs/report.md)")
+endif()
 file(READ "${IN}" CENTAUR_VIEWER_JS)
 string(LENGTH "${CENTAUR_VIEWER_JS}" length)
 if(length LESS 1000)
