@@ -24,20 +24,12 @@ struct RobotArgs {
 nlohmann::json toJson(const robot_node::RobotNodeResult& r, const std::string& task) {
   const sim::RunSummary& s = r.summary;
   const robot_node::RemoteReport& m = r.remote;
-  nlohmann::json j;
+  nlohmann::json j = sim::summaryJson(s);  // the fields of `simulate --json` (outcome, metrics, the task's numbers)
   j["task"] = task;
   j["mode"] = r.lockstep ? "lockstep" : "realtime";
   j["domain"] = r.domain;
-  j["outcome"] = s.outcome;
-  j["duration_s"] = s.duration_s;
-  j["fall_time_s"] = s.fall_time_s >= 0.0 ? nlohmann::json(s.fall_time_s) : nlohmann::json(nullptr);
-  j["peak_pitch_deg"] = s.peak_pitch_deg;
-  j["peak_roll_deg"] = s.peak_roll_deg;
-  j["pelvis_drift_m"] = s.pelvis_drift_m;
-  j["final_pelvis_height_m"] = s.final_pelvis_height_m;
-  j["max_torque_ratio"] = s.max_torque_ratio;
   j["real_time_factor"] = s.real_time_factor;
-  j["control_periods"] = s.control_periods;
+  j["wall_time_s"] = s.wall_time_s;
   j["states_published"] = m.states_published;
   j["commands_received"] = m.guard.received + m.ignored_in_damping;
   j["commands_applied"] = m.guard.applied;
@@ -49,10 +41,10 @@ nlohmann::json toJson(const robot_node::RobotNodeResult& r, const std::string& t
   j["late_periods"] = m.late_periods;
   j["watchdog_trips"] = m.watchdog_trips;
   j["resets"] = m.resets;
-  j["first_damping_time_s"] = m.first_damping_time_s >= 0.0 ? nlohmann::json(m.first_damping_time_s) : nlohmann::json(nullptr);
+  j["first_damping_time_s"] =
+      m.first_damping_time_s >= 0.0 ? nlohmann::json(m.first_damping_time_s) : nlohmann::json(nullptr);
   j["last_applied_time_s"] = m.last_applied_time_s;
   j["files"] = s.files;
-  for (const auto& [name, value] : s.extra) j[name] = value;
   return j;
 }
 
