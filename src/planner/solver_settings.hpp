@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 
 #include "common/yaml_reader.hpp"
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
 namespace centaur::planner {
 
@@ -37,7 +37,7 @@ struct SolveStats {
 };
 
 struct SolveResult {
-  SolveInfo info;
+  data::SolveInfo info;
   Eigen::VectorXd z;  ///< the final iterate (also when not converged)
   Eigen::VectorXd y;  ///< constraint multipliers (empty if the backend does not return them)
   std::string ipopt_status;
