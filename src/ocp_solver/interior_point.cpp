@@ -68,6 +68,21 @@ void Ipm::setupProblem() {
     has_gl_[r] = ineq_[r] && std::isfinite(gl_[r]);
     has_gu_[r] = ineq_[r] && std::isfinite(gu_[r]);
   }
+  // As Ipopt: every inequality bound is relaxed by bound_relax_factor * max(1, |bound|) (in the scaled
+  // variables), so that the interior is never empty; the final x is projected back (honor_original_bounds).
+  xl_orig_ = xl_;
+  xu_orig_ = xu_;
+  gl_orig_ = gl_;
+  gu_orig_ = gu_;
+  const double rf = opt_.bound_relax_factor;
+  for (int i = 0; i < n_; ++i) {
+    if (has_xl_[i]) xl_[i] -= rf * std::max(1.0, std::abs(xl_[i]));
+    if (has_xu_[i]) xu_[i] += rf * std::max(1.0, std::abs(xu_[i]));
+  }
+  for (int r = 0; r < m_; ++r) {
+    if (has_gl_[r]) gl_[r] -= rf * std::max(1.0, std::abs(gl_[r]));
+    if (has_gu_[r]) gu_[r] += rf * std::max(1.0, std::abs(gu_[r]));
+  }
   jac_scale_.resize(p.jac_cols.size());
   for (std::size_t t = 0; t < p.jac_cols.size(); ++t) jac_scale_[t] = D_[p.jac_cols[t]];
   hess_scale_.resize(p.hess_rows.size());
@@ -333,13 +348,17 @@ IpmResult Ipm::run() {
       break;
     }
   }
+  for (int i = 0; i < n_; ++i) {
+    if (has_xl_[i]) x_[i] = std::max(x_[i], xl_orig_[i]);
+    if (has_xu_[i]) x_[i] = std::min(x_[i], xu_orig_[i]);
+  }
   res.x = unscaled(x_);
   res.y = y_;
   res.z_l = zl_.cwiseQuotient(D_);
   res.z_u = zu_.cwiseQuotient(D_);
   res.objective = f_;
   double viol = 0.0;
-  for (int r = 0; r < m_; ++r) viol = std::max({viol, gl_[r] - g_[r], g_[r] - gu_[r]});
+  for (int r = 0; r < m_; ++r) viol = std::max({viol, gl_orig_[r] - g_[r], g_[r] - gu_orig_[r]});
   res.constraint_violation = viol;
   stats_.time_total = elapsed();
   res.stats = stats_;

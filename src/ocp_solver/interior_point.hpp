@@ -34,6 +34,7 @@ struct IpmOptions {
   double mu_init = 0.1;
   double bound_push = 1e-2, bound_frac = 1e-2;  ///< initial distance of x and the slacks to their bounds
   double bound_mult_init = 1.0;    ///< initial bound multipliers
+  double bound_relax_factor = 1e-8;  ///< inequality bounds relaxed by this * max(1, |bound|) (Ipopt's default)
   double constr_mult_init_max = 1e3;
   bool progress = false;           ///< one line per iteration on stderr
 };

@@ -20,7 +20,32 @@ constexpr double kKappaEps = 10.0;  // barrier subproblem tolerance factor
 constexpr double kKappaMu = 0.2, kThetaMu = 1.5, kTauMin = 0.99;
 constexpr double kSigmaMax = 100.0, kMuMin = 1e-11, kMuMaxFact = 1e3, kMonotoneInitFactor = 0.8;
 constexpr double kFilterMarginFact = 1e-5;
-constexpr int kGoldenSteps = 12;
+constexpr int kGoldenSteps = 8;
+constexpr double kSigmaMin = 1e-6, kSectionTol = 1e-2, kOneMinusEps = 1e-4;
+
+// Golden-section minimization of q over [lo, hi] (ends included in the candidates).
+template <class Q>
+double goldenSection(const Q& q, double lo, double hi) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  const double q_lo = q(lo), q_hi = q(hi);
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+  double qa = q(a), qb = q(b);
+  for (int it = 0; it < kGoldenSteps && hi - lo >= kSectionTol * hi; ++it) {
+    if (qa < qb) {
+      hi = b, b = a, qb = qa;
+      a = hi - g * (hi - lo);
+      qa = q(a);
+    } else {
+      lo = a, a = b, qa = qb;
+      b = lo + g * (hi - lo);
+      qb = q(b);
+    }
+  }
+  double best = qa < qb ? a : b, q_best = std::min(qa, qb);
+  if (q_lo < q_best) best = lo, q_best = q_lo;
+  if (q_hi < q_best) best = hi;
+  return best;
+}
 }  // namespace
 
 double Ipm::averageComplementarity() const {
@@ -152,28 +177,18 @@ bool Ipm::adaptiveDirection() {
   solveAndRecover(rp_, cen_);
   mu_ = mu_saved;
   if (!aff_.x.allFinite() || !cen_.x.allFinite()) return false;
-  // Golden-section search of the quality function over log sigma.
-  const double lo0 = std::log(std::max(kMuMin / avg, 1e-9)), hi0 = std::log(std::min(kSigmaMax, mu_max_ / avg));
-  double lo = lo0, hi = std::max(lo0, hi0);
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-  double qa = qualityFunction(aff_, cen_, std::exp(a), kTauMin), qb = qualityFunction(aff_, cen_, std::exp(b), kTauMin);
-  for (int it = 0; it < kGoldenSteps; ++it) {
-    if (qa < qb) {
-      hi = b, b = a, qb = qa;
-      a = hi - g * (hi - lo);
-      qa = qualityFunction(aff_, cen_, std::exp(a), kTauMin);
-    } else {
-      lo = a, a = b, qa = qb;
-      b = lo + g * (hi - lo);
-      qb = qualityFunction(aff_, cen_, std::exp(b), kTauMin);
-    }
+  // Minimize the quality function over sigma in [sigma_lo, sigma_up]: the side of sigma = 1 where it decreases
+  // is chosen first (from q(1) and q(1 - eps)), then a golden-section search in sigma on that side, stopped when
+  // the bracket is narrower than kSectionTol relative to its upper end or after kGoldenSteps sections.
+  const double sigma_lo = std::max(kSigmaMin, kMuMin / avg), sigma_up = std::max(sigma_lo, std::min(kSigmaMax, mu_max_ / avg));
+  auto q = [&](double sg) { return qualityFunction(aff_, cen_, sg, kTauMin); };
+  double sigma;
+  if (sigma_up <= 1.0 || sigma_lo >= 1.0) {
+    sigma = goldenSection(q, sigma_lo, sigma_up);
+  } else {
+    const double q1 = q(1.0), q1m = q(1.0 - kOneMinusEps);
+    sigma = q1m < q1 ? goldenSection(q, sigma_lo, 1.0) : goldenSection(q, 1.0, sigma_up);
   }
-  double sigma = std::exp(qa < qb ? a : b);
-  // the interval ends may be better (the function is not unimodal in general)
-  const double q_best = std::min(qa, qb);
-  if (qualityFunction(aff_, cen_, std::exp(lo0), kTauMin) < q_best) sigma = std::exp(lo0);
-  else if (hi0 > lo0 && qualityFunction(aff_, cen_, std::exp(hi0), kTauMin) < q_best) sigma = std::exp(hi0);
   mu_ = std::clamp(sigma * avg, kMuMin, mu_max_);
   sigma = mu_ / avg;
   tau_ = std::max(kTauMin, 1.0 - mu_);

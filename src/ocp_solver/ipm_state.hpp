@@ -70,7 +70,8 @@ class Ipm {
   const WarmStart* warm_;
   int n_ = 0, m_ = 0;
   Vec D_;  // variable scale
-  Vec xl_, xu_, gl_, gu_;
+  Vec xl_, xu_, gl_, gu_;  // bounds as the method sees them (scaled x, relaxed)
+  Vec xl_orig_, xu_orig_, gl_orig_, gu_orig_;  // the bounds before the relaxation
   std::vector<char> fixed_, has_xl_, has_xu_, ineq_, has_gl_, has_gu_;
   std::vector<double> jac_scale_, hess_scale_;
 

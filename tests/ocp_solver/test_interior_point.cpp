@@ -128,7 +128,8 @@ TEST(InteriorPoint, Hs071ReachesTheKnownOptimum) {
     EXPECT_NEAR(r.x[1], 4.7429994, 1e-6);
     EXPECT_NEAR(r.x[2], 3.8211503, 1e-6);
     EXPECT_NEAR(r.x[3], 1.3794082, 1e-6);
-    EXPECT_LT(r.constraint_violation, 1e-8);
+    // at most the bound relaxation (as Ipopt): bound_relax_factor * max(1, |25|)
+    EXPECT_LT(r.constraint_violation, 1.01 * opt.bound_relax_factor * 25.0);
     EXPECT_LT(r.stats.iterations, 20) << mode;  // Ipopt: 8
   }
 }
