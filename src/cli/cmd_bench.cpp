@@ -1,6 +1,6 @@
 // centaur bench planner [--repeat N] [--json]
-// Cold solves of both jump primitives with the embedded defaults; reports the median wall and CPU solve time,
-// iterations and time per iteration. With --json the last stdout line is one JSON object.
+// Cold solves of both jump primitives with the embedded defaults and both OCP backends (interleaved); reports the
+// median wall and CPU solve time, iterations, time per iteration, derivative and factorization time. With --json the last stdout line is one JSON object.
 // centaur bench tick [--ticks N] [--stack FILE] [--json]
 // The whole-body controller's tick (HQP IK + contact detection + force distribution) timed in closed loop on
 // CENTAURO standing in MuJoCo (default stack config/stack_stand.yaml): median / p99 / max of tick() and of its
@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <map>
 
 #include "cli/bench_middleware.hpp"
 #include "cli/command.hpp"
@@ -43,35 +44,71 @@ struct BenchArgs {
   std::vector<std::string> modes = {"none", "raibert", "angmom", "ocp"};
 };
 
-nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
-  std::vector<double> wall, cpu, setup;
-  int iterations = 0;
+// The solves of one backend (one entry per cold run).
+struct BackendRuns {
+  std::vector<double> wall, cpu, derivatives, factor;
+  int iterations = 0, factorizations = -1;
+  double cost = 0.0;
   std::string status;
-  for (int r = 0; r < repeat; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::clock_t c0 = std::clock();
-    const planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", {});
-    const planner::JumpProblem problem(cfg);
-    const auto t1 = std::chrono::steady_clock::now();
-    const std::clock_t c1 = std::clock();
-    const auto res = problem.solve(false);
-    const auto t2 = std::chrono::steady_clock::now();
-    const std::clock_t c2 = std::clock();
-    setup.push_back(std::chrono::duration<double>(t1 - t0).count());
-    wall.push_back(std::chrono::duration<double>(t2 - t1).count());
-    cpu.push_back(static_cast<double>(c2 - c1) / CLOCKS_PER_SEC);
-    (void)c0;
-    iterations = res.info.iterations;
-    status = res.info.status;
-  }
+};
+
+nlohmann::json backendJson(const BackendRuns& r) {
   nlohmann::json j;
-  j["status"] = status;
-  j["iterations"] = iterations;
-  j["solve_wall_s_median"] = median(wall);
-  j["solve_cpu_s_median"] = median(cpu);
+  j["status"] = r.status;
+  j["iterations"] = r.iterations;
+  j["cost"] = r.cost;
+  j["solve_wall_s_median"] = median(r.wall);
+  j["solve_cpu_s_median"] = median(r.cpu);
+  j["ms_per_iteration"] = r.iterations > 0 ? 1e3 * median(r.wall) / r.iterations : 0.0;
+  j["derivative_wall_s_median"] = median(r.derivatives);
+  if (r.factorizations >= 0) {
+    j["factorizations_per_iteration"] = r.iterations > 0 ? static_cast<double>(r.factorizations) / r.iterations : 0.0;
+    j["factor_wall_s_median"] = median(r.factor);
+  }
+  return j;
+}
+
+// Cold solves with both backends (solver.backend ipopt and riccati), interleaved run by run so that a change of
+// the machine's speed affects both alike. The top-level fields are those of the configured default backend.
+nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
+  const std::vector<std::string> backends = {"ipopt", "riccati"};
+  std::map<std::string, BackendRuns> runs;
+  std::vector<double> setup;
+  std::string default_backend;
+  for (int r = 0; r < repeat; ++r) {
+    for (const std::string& b : backends) {
+      const auto t0 = std::chrono::steady_clock::now();
+      planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", {});
+      default_backend = cfg.solver.backend;
+      cfg.solver.backend = b;
+      const planner::JumpProblem problem(cfg);
+      const auto t1 = std::chrono::steady_clock::now();
+      const std::clock_t c1 = std::clock();
+      const auto res = problem.solve(false);
+      const auto t2 = std::chrono::steady_clock::now();
+      const std::clock_t c2 = std::clock();
+      if (b == default_backend) setup.push_back(std::chrono::duration<double>(t1 - t0).count());
+      BackendRuns& br = runs[b];
+      br.wall.push_back(std::chrono::duration<double>(t2 - t1).count());
+      br.cpu.push_back(static_cast<double>(c2 - c1) / CLOCKS_PER_SEC);
+      br.derivatives.push_back(res.stats.derivative_time_s);
+      br.factor.push_back(res.stats.factor_time_s);
+      br.iterations = res.info.iterations;
+      br.factorizations = res.stats.factorizations;
+      br.cost = res.info.cost;
+      br.status = res.info.status;
+    }
+  }
+  nlohmann::json j = backendJson(runs[default_backend]);
+  j["ms_per_iteration"] = runs[default_backend].iterations > 0
+                              ? 1e3 * median(runs[default_backend].cpu) / runs[default_backend].iterations
+                              : 0.0;  // CPU per iteration, as before the backends
   j["setup_wall_s_median"] = median(setup);
-  j["ms_per_iteration"] = iterations > 0 ? 1e3 * median(cpu) / iterations : 0.0;
   j["repeat"] = repeat;
+  j["backend"] = default_backend;
+  for (const std::string& b : backends) j["backends"][b] = backendJson(runs[b]);
+  const double wi = median(runs["ipopt"].wall), wr = median(runs["riccati"].wall);
+  j["riccati_speedup_wall"] = wr > 0.0 ? wi / wr : 0.0;
   return j;
 }
 
@@ -196,10 +233,20 @@ int runBench(const BenchArgs& a) {
       std::fprintf(stderr, "bench planner %s: %d cold solves ...\n", p.c_str(), a.repeat);
       out["planner"][p] = benchPrimitive(p, a.repeat);
       const auto& j = out["planner"][p];
-      std::fprintf(stderr, "  %-16s %s, %d iterations, median solve %.3f s wall / %.3f s CPU, %.1f ms per iteration\n",
-                   p.c_str(), j["status"].get<std::string>().c_str(), j["iterations"].get<int>(),
-                   j["solve_wall_s_median"].get<double>(), j["solve_cpu_s_median"].get<double>(),
-                   j["ms_per_iteration"].get<double>());
+      for (const auto& [b, jb] : j["backends"].items()) {
+        std::fprintf(stderr, "  %-16s %-8s %s, %d iterations, median solve %.3f s wall / %.3f s CPU, %.1f ms per iteration",
+                     p.c_str(), b.c_str(), jb["status"].get<std::string>().c_str(), jb["iterations"].get<int>(),
+                     jb["solve_wall_s_median"].get<double>(), jb["solve_cpu_s_median"].get<double>(),
+                     jb["ms_per_iteration"].get<double>());
+        std::fprintf(stderr, ", derivatives %.3f s", jb["derivative_wall_s_median"].get<double>());
+        if (jb.contains("factorizations_per_iteration")) {
+          std::fprintf(stderr, ", %.2f factorizations per iteration (%.3f s)",
+                       jb["factorizations_per_iteration"].get<double>(), jb["factor_wall_s_median"].get<double>());
+        }
+        std::fprintf(stderr, ", cost %.9g\n", jb["cost"].get<double>());
+      }
+      std::fprintf(stderr, "  %-16s riccati %.2fx faster than ipopt (median wall)\n", p.c_str(),
+                   j["riccati_speedup_wall"].get<double>());
     }
   }
   if (a.target == "tick") {
