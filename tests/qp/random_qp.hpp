@@ -23,6 +23,44 @@ inline QpStatus solveQp(QpSolver& s, const DenseQp& qp) {
   return s.solve(qp.H, qp.g, qp.A_eq, qp.b_eq, qp.C, qp.c_lo, qp.c_up, qp.x_lo, qp.x_up);
 }
 
+/// Normwise relative KKT residual of (x, y), scaled like the rounding errors of each term (they grow with ||x||):
+/// stationarity / max(1, ||H||_inf ||x||_inf, ||g||_inf, |y_i| ||row_i||_1), a violation / max(1, |bound|,
+/// ||row||_1 ||x||_inf), complementarity as the product of the relative multiplier |y_i| ||row_i||_1 / (that
+/// stationarity scale) and the relative distance to its bound; a multiplier on an infinite bound counts in full.
+inline double kktResidualRelative(const DenseQp& qp, const QpSolver& s) {
+  const VectorXd x = s.x();
+  const VectorXd y_eq = s.yEq(), y_in = s.yIneq();
+  const bool box = qp.x_lo.size() > 0;
+  const double x_max = x.size() > 0 ? x.cwiseAbs().maxCoeff() : 0.0;
+  VectorXd stat = qp.H * x + qp.g - qp.A_eq.transpose() * y_eq - qp.C.transpose() * y_in;
+  if (box) stat -= s.yBox();
+  double scale = std::max({1.0, qp.H.cwiseAbs().rowwise().sum().maxCoeff() * x_max, qp.g.cwiseAbs().maxCoeff()});
+  for (int i = 0; i < qp.A_eq.rows(); ++i) scale = std::max(scale, std::abs(y_eq[i]) * qp.A_eq.row(i).cwiseAbs().sum());
+  for (int i = 0; i < qp.C.rows(); ++i) scale = std::max(scale, std::abs(y_in[i]) * qp.C.row(i).cwiseAbs().sum());
+  if (box) scale = std::max(scale, s.yBox().cwiseAbs().maxCoeff());
+  double res = stat.cwiseAbs().maxCoeff() / scale;
+  auto side = [&](double v, double lo, double up, double y, double row1) {
+    double r = 0.0;
+    const double lo_s = std::max({1.0, std::abs(lo), row1 * x_max}), up_s = std::max({1.0, std::abs(up), row1 * x_max});
+    if (std::isfinite(lo)) r = std::max(r, (lo - v) / lo_s);
+    if (std::isfinite(up)) r = std::max(r, (v - up) / up_s);
+    const double weight = std::abs(y) * row1 / scale;  // complementarity: |y| |v - bound|, both relative
+    if (y > 0.0) r = std::max(r, std::isfinite(lo) ? weight * std::abs(v - lo) / lo_s : weight);
+    if (y < 0.0) r = std::max(r, std::isfinite(up) ? weight * std::abs(v - up) / up_s : weight);
+    return r;
+  };
+  for (int i = 0; i < qp.A_eq.rows(); ++i) {
+    const double b = qp.b_eq[i];
+    res = std::max(res, side(qp.A_eq.row(i).dot(x), b, b, 0.0, qp.A_eq.row(i).cwiseAbs().sum()));
+  }
+  const VectorXd cx = qp.C * x;
+  for (int i = 0; i < qp.C.rows(); ++i)
+    res = std::max(res, side(cx[i], qp.c_lo[i], qp.c_up[i], y_in[i], qp.C.row(i).cwiseAbs().sum()));
+  if (box)
+    for (int j = 0; j < qp.n(); ++j) res = std::max(res, side(x[j], qp.x_lo[j], qp.x_up[j], s.yBox()[j], 1.0));
+  return res;
+}
+
 /// Relative KKT residual of (x, y) for the convention H x + g = A_eq' y_eq + C' y_in + y_box:
 // max of stationarity, primal violation, dual sign violation and complementarity, each scaled by the data.
 inline double kktResidual(const DenseQp& qp, const QpSolver& s) {
@@ -51,9 +89,10 @@ inline double kktResidual(const DenseQp& qp, const QpSolver& s) {
   return res;
 }
 
-/// A random feasible problem: a point x0 satisfies every constraint; rows are made active at x0, redundant,
+/// A random feasible problem (rel_reg >= 0: H of rank n/2 plus rel_reg * max(H_ii) * I, and with least_squares g
+/// in the range of that rank-n/2 part, as in a regularised least-squares cost): a point x0 satisfies every constraint; rows are made active at x0, redundant,
 // duplicated (also with flipped sign), rank deficient, one-sided or free; H sometimes ill-conditioned.
-inline DenseQp randomFeasible(std::mt19937& rng, int n_max = 25, double rel_reg = -1.0) {
+inline DenseQp randomFeasible(std::mt19937& rng, int n_max = 25, double rel_reg = -1.0, bool least_squares = false) {
   std::uniform_int_distribution<int> dn(1, n_max);
   std::normal_distribution<double> N(0.0, 1.0);
   std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -76,6 +115,11 @@ inline DenseQp randomFeasible(std::mt19937& rng, int n_max = 25, double rel_reg 
   }
   qp.g.resize(n);
   for (int j = 0; j < n; ++j) qp.g[j] = 3.0 * N(rng);
+  if (rel_reg >= 0.0 && least_squares) {  // g = -M' b / k: the cost ||M x - b||^2 / (2k) + regularisation
+    VectorXd b(k);
+    for (int i = 0; i < k; ++i) b[i] = 3.0 * N(rng);
+    qp.g = -M.transpose() * b / k;
+  }
   // Equalities, possibly rank deficient (rows that combine earlier rows, more rows than variables).
   const int m_eq = std::uniform_int_distribution<int>(0, U(rng) < 0.2 ? n + 2 : std::max(0, n - 1))(rng);
   qp.A_eq.resize(m_eq, n);
