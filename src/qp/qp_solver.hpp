@@ -41,6 +41,13 @@ enum class QpStatus {
   kInaccurate,           ///< no point passed the KKT check (H too ill-conditioned for the tolerances)
 };
 
+/// Callers that build H = sum_t w_t A_t'A_t + eps I (regularised least squares: the whole-body stack, the force
+/// distribution) keep eps >= kMinRegularisationRatio * max_t w_t. Then the relative regularisation
+/// eps / max_i H_ii stays above the solver's singular_tol (1e-10) for rows with |A_row|^2 up to 1e3, where the
+/// direct dual method is fast and accurate (measured, docs/qp.md); below it H counts as singular and the much
+/// slower proximal-point iterations run.
+constexpr double kMinRegularisationRatio = 1e-7;
+
 /// "optimal", "infeasible", ... for messages.
 const char* toString(QpStatus status);
 
@@ -83,8 +90,11 @@ class QpSolver {
   void resize(int n, int m_eq_max, int m_in_max);
   QpSettings& settings() { return settings_; }
   const QpSettings& settings() const { return settings_; }
-  /// Forget the previous active set: the next solve is cold.
-  void resetWarmStart() { n_prev_ = 0; }
+  /// Forget the previous active set (and solution): the next solve is cold.
+  void resetWarmStart() {
+    n_prev_ = 0;
+    prev_n_ = -1;
+  }
 
   /// Solve. Sizes: H n x n (n <= the n of resize(); symmetric, its lower triangle is factorised), g n, A_eq m_eq x n (m_eq <= m_eq_max), b_eq m_eq,
   /// C m_in x n, c_lo/c_up m_in, x_lo/x_up n or size 0 (no box bounds). Never allocates, never throws.

@@ -3,8 +3,12 @@
 // problems and ill-conditioned Hessians, on problems whose answer is known by construction or given by Ipopt.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "qp/qp_solver.hpp"
 #include "random_qp.hpp"
@@ -126,7 +130,7 @@ TEST(QpSemidefinite, IllConditionedHessiansAgainstIpopt) {
   QpSolver s(30, 32, 60);
   for (const bool least_squares : {true, false}) {
     for (double rel_reg : {1e-4, 1e-6, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 0.0}) {
-      const int trials = 60;
+      const int trials = 40;
       int optimal = 0, compared = 0, prox = 0;
       int count[7] = {0, 0, 0, 0, 0, 0, 0};
       double worst_obj = 0.0, worst_kkt = 0.0;
@@ -160,4 +164,81 @@ TEST(QpSemidefinite, IllConditionedHessiansAgainstIpopt) {
       std::printf("\n");
     }
   }
+}
+
+TEST(QpSemidefinite, EveryStatusIsReachable) {
+  // One small problem per status, each with the answer it must give.
+  QpSolver s(2, 1, 2);
+  const MatrixXd none(0, 2);
+  const VectorXd e0(0);
+  const double kInf = centaur::test::kInf;
+  auto solve = [&](const MatrixXd& H, const VectorXd& g, const MatrixXd& C, const VectorXd& lo, const VectorXd& up,
+                   const VectorXd& xl = VectorXd(), const VectorXd& xu = VectorXd()) {
+    return s.solve(H, g, none, e0, C, lo, up, xl, xu);
+  };
+  const MatrixXd I = MatrixXd::Identity(2, 2);
+  const MatrixXd row = (MatrixXd(1, 2) << 1.0, 1.0).finished();
+  // optimal: min 1/2 |x|^2 - (1, 1)'x s.t. x1 + x2 <= 1 -> x = (0.5, 0.5), y = -0.5 (upper side)
+  ASSERT_EQ(solve(I, -VectorXd::Ones(2), row, VectorXd::Constant(1, -kInf), VectorXd::Ones(1)), QpStatus::kOptimal);
+  EXPECT_NEAR(s.x()[0], 0.5, 1e-15);
+  EXPECT_NEAR(s.yIneq()[0], -0.5, 1e-15);
+  // infeasible: x1 + x2 >= 1 and x1 + x2 <= -1 (two rows)
+  const MatrixXd rows = (MatrixXd(2, 2) << 1.0, 1.0, 1.0, 1.0).finished();
+  EXPECT_EQ(solve(I, VectorXd::Zero(2), rows, Eigen::Vector2d(1.0, -kInf), Eigen::Vector2d(kInf, -1.0)),
+            QpStatus::kInfeasible);
+  // invalid input: NaN in g
+  EXPECT_EQ(solve(I, Eigen::Vector2d(0.0, std::nan("")), none, e0, e0), QpStatus::kInvalidInput);
+  // not convex: an eigenvalue -1
+  EXPECT_EQ(solve(Eigen::Vector2d(1.0, -1.0).asDiagonal().toDenseMatrix(), VectorXd::Zero(2), none, e0, e0),
+            QpStatus::kNotPositiveDefinite);
+  // unbounded: H = diag(1, 0), g = (0, -1), x1 in [-1, 1]: f -> -inf along the ray (0, 1)
+  const MatrixXd Hs = Eigen::Vector2d(1.0, 0.0).asDiagonal();
+  ASSERT_EQ(solve(Hs, Eigen::Vector2d(0.0, -1.0), none, e0, e0, Eigen::Vector2d(-1.0, -kInf),
+                  Eigen::Vector2d(1.0, kInf)),
+            QpStatus::kUnbounded);
+  EXPECT_NEAR(s.ray()[0], 0.0, 1e-12);
+  EXPECT_NEAR(s.ray()[1], 1.0, 1e-12);
+  // the same bounded by x2 <= 3: optimal at (0, 3) with the bound's multiplier -1, by proximal iterations
+  ASSERT_EQ(solve(Hs, Eigen::Vector2d(0.0, -1.0), none, e0, e0, Eigen::Vector2d(-1.0, -kInf),
+                  Eigen::Vector2d(1.0, 3.0)),
+            QpStatus::kOptimal);
+  EXPECT_NEAR(s.x()[0], 0.0, 1e-12);
+  EXPECT_NEAR(s.x()[1], 3.0, 1e-12);
+  EXPECT_NEAR(s.yBox()[1], -1.0, 1e-12);
+  EXPECT_GT(s.proximalIterations(), 0);
+  // iteration limit: of the proximal iterations (the unbounded problem needs two to show its ray) ...
+  s.settings().max_proximal_iterations = 1;
+  EXPECT_EQ(solve(Hs, Eigen::Vector2d(0.0, -1.0), none, e0, e0, Eigen::Vector2d(-1.0, -kInf),
+                  Eigen::Vector2d(1.0, kInf)),
+            QpStatus::kIterationLimit);
+  s.settings() = centaur::QpSettings();
+  // (a linear program: H = 0, max x1 + 2 x2 s.t. x1 + x2 <= 1, x >= 0, at its vertex (0, 1))
+  ASSERT_EQ(solve(MatrixXd::Zero(2, 2), Eigen::Vector2d(-1.0, -2.0), row, VectorXd::Constant(1, -kInf),
+                  VectorXd::Ones(1), Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(kInf, kInf)),
+            QpStatus::kOptimal);
+  EXPECT_NEAR(s.x()[0], 0.0, 1e-12);
+  EXPECT_NEAR(s.x()[1], 1.0, 1e-12);
+  EXPECT_NEAR(s.objective(), -2.0, 1e-12);
+  // ... and of the active-set changes
+  s.settings().max_iterations = 1;
+  s.resetWarmStart();
+  EXPECT_EQ(solve(I, Eigen::Vector2d(-3.0, -3.0), rows, Eigen::Vector2d(-kInf, -kInf), Eigen::Vector2d(1.0, 1.0),
+                  Eigen::Vector2d(2.0, -kInf), Eigen::Vector2d(kInf, kInf)),
+            QpStatus::kIterationLimit);
+  // inaccurate: a KKT tolerance below the rounding of the data cannot be met by the direct answer nor by the
+  // proximal iterations; the answer is not reported optimal
+  std::mt19937 rng(155);
+  const KnownQp k = centaur::test::knownAnswer(rng, 10, 10);
+  QpSolver strict = sizedFor(k.qp);
+  ASSERT_EQ(solveQp(strict, k.qp), QpStatus::kOptimal);
+  strict.settings().kkt_tol = 1e-30;
+  EXPECT_EQ(solveQp(strict, k.qp), QpStatus::kInaccurate);
+  // distinct names for messages
+  std::vector<std::string> names;
+  for (int k = 0; k <= static_cast<int>(QpStatus::kInaccurate); ++k) {
+    names.push_back(centaur::toString(static_cast<QpStatus>(k)));
+    EXPECT_NE(names.back(), "unknown");
+  }
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(std::unique(names.begin(), names.end()), names.end());
 }
