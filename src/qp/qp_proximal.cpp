@@ -16,7 +16,7 @@ QpStatus QpSolver::solveProximal(const Eigen::Ref<const Eigen::VectorXd>& g) {
   // x_{k+1} = argmin 1/2 x'Hx + g'x + rho/2 ||x - x_k||^2 = the QP with H + rho I and g - rho x_k, same
   // constraints. At a fixed point the KKT conditions of the original problem hold (the stationarity residual of
   // x_{k+1} is -rho (x_{k+1} - x_k)); if there is no optimum because f is unbounded below, the steps tend to a
-  // ray of descent, which isRay() recognises. Each iteration is warm-started from the previous active set.
+  // ray of descent, which flatDescent() recognises. Each iteration is warm-started from the previous active set.
   const int n = n_;
   const double rho = settings_.proximal_rho * (h_scale_ > 0.0 ? h_scale_ : 1.0);
   if (!factorize(rho)) return QpStatus::kNotPositiveDefinite;  // an eigenvalue of H below -rho: not convex
@@ -33,8 +33,11 @@ QpStatus QpSolver::solveProximal(const Eigen::Ref<const Eigen::VectorXd>& g) {
     g_ = &g;  // the original problem at x_{k+1}
     if (polishHolds()) return QpStatus::kOptimal;
     w_.head(n) = x_.head(n) - xk_.head(n);
-    if (k > 0 && isRay(w_)) return QpStatus::kUnbounded;
-    xk_.head(n) = x_.head(n);
+    const double t = k > 0 ? flatDescent(w_) : 0.0;
+    if (t == kInf) return QpStatus::kUnbounded;
+    // Extrapolation: along a flat descent blocked at distance t the iterations would only creep towards the
+    // blocking bound (|g'd| / rho per step); the next centre is on it.
+    xk_.head(n) = x_.head(n) + t * ray_.head(n);
   }
   return QpStatus::kIterationLimit;
 }
@@ -74,30 +77,37 @@ bool QpSolver::polishHolds() {
   return kktHolds();
 }
 
-bool QpSolver::isRay(const Eigen::VectorXd& d) {
-  // d is a ray of unbounded descent when (to the tolerances) H d = 0 (curvature below singular_tol, the flatness
-  // the singularity test accepts), g'd < 0, and x + t d stays feasible for every t >= 0 from a feasible x: A_eq d =
-  // 0, and every finite bound of a row or variable is on the side d moves away from (or d runs along it).
+double QpSolver::flatDescent(const Eigen::VectorXd& d) {
+  // d (the last proximal step, direction ray_ = d / ||d||) is a flat descent when (to the tolerances) H d = 0
+  // (curvature below singular_tol, the flatness the singularity test accepts), g'd < 0 and A_eq d = 0. It is a ray
+  // of unbounded descent (inf) when x + t d stays feasible for every t >= 0 from the feasible x: every finite bound
+  // of a row or variable on the side d moves away from (or d runs along it); else the distance t to the first
+  // bound it reaches. 0 when d is not a flat descent.
   const int n = n_;
   const double dn = d.head(n).norm();
-  if (!(dn > 0.0) || !std::isfinite(dn)) return false;
+  if (!(dn > 0.0) || !std::isfinite(dn)) return 0.0;
   auto w = ray_.head(n);
   w = d.head(n) / dn;
   applyH(ray_, hx_);
   const double flat = settings_.singular_tol * (h_scale_ > 0.0 ? h_scale_ : 1.0);
-  if (!(hx_.head(n).norm() <= flat)) return false;
+  if (!(hx_.head(n).norm() <= flat)) return 0.0;
   const double tol = settings_.kkt_tol;
-  if (!(g_->dot(w) < -tol * g_->norm())) return false;
+  if (!(g_->dot(w) < -tol * g_->norm())) return 0.0;
   for (int i = 0; i < m_eq_; ++i)
-    if (!(std::abs(A_eq_->row(i).dot(w)) <= tol * A_eq_->row(i).norm())) return false;
+    if (!(std::abs(A_eq_->row(i).dot(w)) <= tol * A_eq_->row(i).norm())) return 0.0;
+  double t = kInf;
+  auto block = [&t](double slack, double rate) { t = std::min(t, std::max(0.0, slack) / rate); };
   for (int i = 0; i < m_in_; ++i) {
     const double cw = C_->row(i).dot(w), lim = tol * row_norm_[i];
-    if ((std::isfinite((*c_lo_)[i]) && cw < -lim) || (std::isfinite((*c_up_)[i]) && cw > lim)) return false;
+    if (std::isfinite((*c_lo_)[i]) && cw < -lim) block(cx_[i] - (*c_lo_)[i], -cw);
+    if (std::isfinite((*c_up_)[i]) && cw > lim) block((*c_up_)[i] - cx_[i], cw);
   }
   if (has_box_)
-    for (int j = 0; j < n; ++j)
-      if ((std::isfinite((*x_lo_)[j]) && w[j] < -tol) || (std::isfinite((*x_up_)[j]) && w[j] > tol)) return false;
-  return true;
+    for (int j = 0; j < n; ++j) {
+      if (std::isfinite((*x_lo_)[j]) && w[j] < -tol) block(x_[j] - (*x_lo_)[j], -w[j]);
+      if (std::isfinite((*x_up_)[j]) && w[j] > tol) block((*x_up_)[j] - x_[j], w[j]);
+    }
+  return t;
 }
 
 }  // namespace centaur

@@ -154,7 +154,9 @@ class QpSolver {
   QpStatus fail(QpStatus status);    // no warm start from a failed solve
   QpStatus solveProximal(const Eigen::Ref<const Eigen::VectorXd>& g);  // H singular or ill-conditioned
   bool polishHolds();                // proximal iterate polished on its active set; KKT check of the original
-  bool isRay(const Eigen::VectorXd& d);  // d (n) a feasible direction of unbounded descent? (sets ray_)
+  // d (n) a flat descent direction (sets ray_ = d / ||d||)? inf: a ray of unbounded descent; t > 0: blocked by a
+  // bound at distance t along ray_; 0: not a flat descent (or blocked at once)
+  double flatDescent(const Eigen::VectorXd& d);
 
   QpSettings settings_;
   int n_max_ = 0, n_ = 0, m_eq_max_ = 0, m_in_max_ = 0;

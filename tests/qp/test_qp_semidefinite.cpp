@@ -122,10 +122,10 @@ TEST(QpSemidefinite, BlockedRaysGiveTheIpoptAnswer) {
 TEST(QpSemidefinite, IllConditionedHessiansAgainstIpopt) {
   // H = M'M (rank n/2) + rel_reg * max(H_ii) * I: positive definite, condition number ~ 1 / rel_reg; g either
   // in the range of M' (a regularised least-squares cost, as in the whole-body stack: the optimum stays bounded as
-  // rel_reg -> 0) or random (|x*| grows like 1 / rel_reg). Whatever the status, an answer reported optimal
-  // satisfies the KKT conditions (relative to the rounding of its terms) and has Ipopt's objective (Ipopt's answer
-  // polished on its active set). Down to rel_reg = 1e-10 every least-squares problem is solved (the range the
-  // stack YAML and the force distribution accept stays above it, docs/qp.md).
+  // rel_reg -> 0) or random (|x*| grows like 1 / rel_reg). An answer reported optimal satisfies the KKT conditions
+  // (relative to the rounding of its terms) and has Ipopt's objective (Ipopt's answer polished on its active set).
+  // Below rel_reg = 1e-10 (singular_tol) the proximal iterations take over (the range the stack YAML and the force
+  // distribution accept stays far above it, docs/qp.md).
   std::mt19937 rng(154);
   QpSolver s(30, 32, 60);
   for (const bool least_squares : {true, false}) {
@@ -138,8 +138,13 @@ TEST(QpSemidefinite, IllConditionedHessiansAgainstIpopt) {
         const DenseQp qp = centaur::test::randomFeasible(rng, 30, rel_reg, least_squares);
         const QpStatus st = solveQp(s, qp);
         ++count[static_cast<int>(st)];
-        if (least_squares && rel_reg >= 1e-10) {
+        // Feasible and convex by construction: never infeasible nor "not convex"; a least-squares cost is bounded
+        // below, so its problems are always solved; a random g may make a flat direction descend (unbounded).
+        if (least_squares) {
           EXPECT_EQ(st, QpStatus::kOptimal) << "rel_reg " << rel_reg << " trial " << trial;
+        } else {
+          EXPECT_TRUE(st == QpStatus::kOptimal || st == QpStatus::kUnbounded)
+              << "rel_reg " << rel_reg << " trial " << trial << ": " << centaur::toString(st);
         }
         if (st != QpStatus::kOptimal) continue;
         ++optimal;
@@ -164,6 +169,32 @@ TEST(QpSemidefinite, IllConditionedHessiansAgainstIpopt) {
       std::printf("\n");
     }
   }
+}
+
+TEST(QpSemidefinite, AFarBoundAlongAFlatDirectionIsReachedNotCalledUnbounded) {
+  // min 1/2 x1^2 - x2: flat and descending along x2, blocked far away. By a bound x2 <= 1e9: the optimum (0, 1e9),
+  // multiplier -1; by a row 0.3 x1 + x2 <= 1e8: x1 = -0.3, x2 = 1e8 + 0.09, multiplier -1. The proximal steps
+  // (|g| / rho = 1e7 each) would need ~100 iterations to creep there: they jump to the blocking bound instead.
+  const double kInf = centaur::test::kInf;
+  const MatrixXd H = Eigen::Vector2d(1.0, 0.0).asDiagonal();
+  const Eigen::Vector2d g(0.0, -1.0);
+  const MatrixXd none(0, 2);
+  const VectorXd e0(0);
+  QpSolver s(2, 0, 1);
+  ASSERT_EQ(s.solve(H, g, none, e0, none, e0, e0, Eigen::Vector2d(-1.0, -kInf), Eigen::Vector2d(1.0, 1e9)),
+            QpStatus::kOptimal);
+  EXPECT_NEAR(s.x()[0], 0.0, 1e-9);
+  EXPECT_NEAR(s.x()[1], 1e9, 1e-9 * 1e9);
+  EXPECT_NEAR(s.yBox()[1], -1.0, 1e-9);
+  EXPECT_NEAR(s.objective(), -1e9, 1e-9 * 1e9);
+  EXPECT_LE(s.proximalIterations(), 4);
+  const MatrixXd row = (MatrixXd(1, 2) << 0.3, 1.0).finished();
+  ASSERT_EQ(s.solve(H, g, none, e0, row, VectorXd::Constant(1, -kInf), VectorXd::Constant(1, 1e8), e0, e0),
+            QpStatus::kOptimal);
+  EXPECT_NEAR(s.x()[0], -0.3, 1e-6);
+  EXPECT_NEAR(s.x()[1], 1e8 + 0.09, 1e-9 * 1e8);
+  EXPECT_NEAR(s.yIneq()[0], -1.0, 1e-9);
+  EXPECT_LE(s.proximalIterations(), 4);
 }
 
 TEST(QpSemidefinite, EveryStatusIsReachable) {
