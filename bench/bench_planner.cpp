@@ -17,6 +17,7 @@ namespace {
 
 using namespace centaur;
 using namespace centaur::planner;
+using namespace centaur::data;
 
 void solveCold(benchmark::State& state, const std::string& primitive) {
   const JumpConfig cfg = loadJumpConfig(primitive, "", {});

@@ -4,8 +4,8 @@
 // when the jump scenarios take a `flywheel` option, the arm-flywheel trajectory (DIR/arm-flywheel.h5, unless
 // --flywheel is given); simulates every (jump, stabilizer mode) pair in-process on a thread pool
 // (DIR/<jump>-<mode>.h5, each with its effective configuration DIR/<jump>-<mode>.config.yaml); writes
-// DIR/compare.md, DIR/compare.json, DIR/compare-pitch.csv and DIR/compare-pitch.png (IMU pitch over time, one
-// panel per jump).
+// DIR/compare.md, DIR/compare.json, DIR/compare-pitch.csv, DIR/compare-pitch.png (IMU pitch over time, one
+// panel per jump) and DIR/report.html (every run replayed in 3D with a run selector, docs/report.md).
 // Exit codes: 0 every run completed (a fall is an outcome, not an error); 2 bad input (nothing written when
 // detected before the runs); 4 runtime failure (a run, planning or plotting failed; what completed is written).
 #include <nlohmann/json.hpp>
@@ -23,9 +23,10 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "planner/arm_flywheel_problem.hpp"
-#include "planner/arm_trajectory_io.hpp"
+#include "data/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
-#include "planner/primitive_io.hpp"
+#include "data/primitive_io.hpp"
+#include "report/report.hpp"
 #include "sim/compare_pitch.hpp"
 #include "sim/compare_report.hpp"
 #include "sim/compare_runner.hpp"
@@ -92,11 +93,11 @@ std::vector<const sim::Scenario*> validate(const CompareArgs& a) {
     if (a.primitives.empty()) {
       planner::loadJumpConfig(jump, "", {});  // the jump can be planned
     } else {
-      planner::readPrimitive(a.primitives, jump);  // InputError naming the file and the available names
+      data::readPrimitive(a.primitives, jump);  // InputError naming the file and the available names
     }
     scenarios.push_back(s);
   }
-  if (!a.flywheel.empty()) planner::readArmTrajectory(a.flywheel);  // InputError naming the file and dataset
+  if (!a.flywheel.empty()) data::readArmTrajectory(a.flywheel);  // InputError naming the file and dataset
   return scenarios;
 }
 
@@ -114,14 +115,14 @@ std::string planFlywheel(const std::string& path, std::vector<std::string>& file
   const auto t0 = std::chrono::steady_clock::now();
   const planner::ArmFlywheelProblem problem(planner::loadArmFlywheelConfig("", {}));
   const planner::SolveResult result = problem.solve(false);
-  const planner::ArmTrajectory tr = problem.toTrajectory(result);
+  const data::ArmTrajectory tr = problem.toTrajectory(result);
   const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::fprintf(stderr, "compare: planned arm-flywheel: %s, %d iterations, %.1f s\n", result.info.status.c_str(),
                result.info.iterations, dt);
   if (!result.info.solved()) {
     std::fprintf(stderr, "compare: warning: arm-flywheel did not converge; its trajectory is used as it is\n");
   }
-  planner::writeArmTrajectory(path, tr, false);
+  data::writeArmTrajectory(path, tr, false);
   files.push_back(path);
   const fs::path f(path);
   const std::string sidecar = (f.parent_path() / (f.stem().string() + "." + tr.name + ".yaml")).string();
@@ -133,7 +134,7 @@ std::string planFlywheel(const std::string& path, std::vector<std::string>& file
 /// Plan every jump with its defaults into `path` (plus <stem>.<jump>.yaml); returns (name, status) pairs.
 std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std::string>& jumps,
                                                            const std::string& path, std::vector<std::string>& files) {
-  std::vector<planner::Primitive> prims;
+  std::vector<data::Primitive> prims;
   std::vector<std::pair<std::string, std::string>> status;
   for (const auto& jump : jumps) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -150,7 +151,7 @@ std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std
     }
     status.emplace_back(jump, result.info.status);
   }
-  planner::writePrimitives(path, prims, planner::WriteMode::Replace);
+  data::writePrimitives(path, prims, data::WriteMode::Replace);
   files.push_back(path);
   for (const auto& p : prims) {
     const fs::path f(path);
@@ -159,6 +160,19 @@ std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std
     files.push_back(sidecar);
   }
   return status;
+}
+
+/// DIR/report.html: every completed run replayed in 3D with its plan as a ghost, a run selector (docs/report.md).
+std::string writeCompareReport(const std::string& dir, const std::vector<report::RunSource>& runs) {
+  const std::string path = (fs::path(dir) / "report.html").string();
+  report::ReportOptions options;
+  options.title = "centaur compare: " + std::to_string(runs.size()) + " run" + (runs.size() == 1 ? "" : "s");
+  try {
+    report::writeReport(path, runs, options);
+  } catch (const InputError& e) {  // our own logs and plans: a runtime failure, not the user's input
+    throw RuntimeError(e.what());
+  }
+  return path;
 }
 
 std::string fmt(const char* format, double v) {
@@ -234,6 +248,7 @@ int runCompare(const CompareArgs& a) {
   bool bad_input = false, failed = false;
   std::vector<std::string> names;
   std::vector<sim::PitchSeries> series;
+  std::vector<report::RunSource> report_runs;
   std::vector<PitchPanel> panels;
   for (const auto& jump : a.jumps) panels.push_back({jump, {}});
   for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -251,6 +266,8 @@ int runCompare(const CompareArgs& a) {
       throw RuntimeError(e.what());
     }
     names.push_back(runs[i].label);
+    report_runs.push_back({pairs[i].jump + " / " + pairs[i].mode + " (" + r.summary.outcome + ")", pairs[i].log,
+                           primitives, pairs[i].jump});
     const std::size_t panel = static_cast<std::size_t>(
         std::find(a.jumps.begin(), a.jumps.end(), pairs[i].jump) - a.jumps.begin());
     if (!series.back().t.empty()) {
@@ -281,6 +298,7 @@ int runCompare(const CompareArgs& a) {
     files.push_back(csv_path);
     plotPitchPanels(csv_path, panels, png_path);
     files.push_back(png_path);
+    files.push_back(writeCompareReport(a.out, report_runs));
   }
   const double total_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 

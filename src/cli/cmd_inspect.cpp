@@ -12,8 +12,8 @@
 
 #include "cli/command.hpp"
 #include "common/error.hpp"
-#include "planner/primitive_io.hpp"
-#include "planner/primitive_summary.hpp"
+#include "data/primitive_io.hpp"
+#include "data/primitive_summary.hpp"
 
 namespace centaur::cli {
 namespace {
@@ -26,7 +26,7 @@ struct InspectArgs {
 
 nlohmann::json orNull(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
-nlohmann::json intervals(const std::vector<planner::TimeInterval>& v) {
+nlohmann::json intervals(const std::vector<data::TimeInterval>& v) {
   nlohmann::json j = nlohmann::json::array();
   for (const auto& iv : v) j.push_back({iv.start, iv.end});
   return j;
@@ -35,7 +35,7 @@ nlohmann::json intervals(const std::vector<planner::TimeInterval>& v) {
 const char* kJointNames[12] = {"FL x", "FL y", "FL z", "FR x", "FR y", "FR z",
                                "RL x", "RL y", "RL z", "RR x", "RR y", "RR z"};
 
-nlohmann::json toJson(const planner::Primitive& p, const planner::PrimitiveSummary& s) {
+nlohmann::json toJson(const data::Primitive& p, const data::PrimitiveSummary& s) {
   nlohmann::json j;
   j["name"] = s.name;
   j["samples"] = s.samples;
@@ -88,14 +88,14 @@ std::string fmt(const char* format, double x) {
   return buf;
 }
 
-std::string intervalText(const std::vector<planner::TimeInterval>& v) {
+std::string intervalText(const std::vector<data::TimeInterval>& v) {
   if (v.empty()) return "none";
   std::string s;
   for (const auto& iv : v) s += (s.empty() ? "" : " ") + fmt("[%.3f", iv.start) + fmt(", %.3f)", iv.end);
   return s;
 }
 
-void printHuman(const planner::Primitive& p, const planner::PrimitiveSummary& s) {
+void printHuman(const data::Primitive& p, const data::PrimitiveSummary& s) {
   std::ostringstream o;
   o << s.name << "\n";
   o << "  solver      " << s.solve.status << (s.solve.solved() ? "" : "  (NOT SOLVED)") << ", " << s.solve.iterations
@@ -143,16 +143,16 @@ void printHuman(const planner::Primitive& p, const planner::PrimitiveSummary& s)
 }
 
 int runInspect(const InspectArgs& a) {
-  std::vector<planner::Primitive> prims;
+  std::vector<data::Primitive> prims;
   if (!a.primitive.empty()) {
-    prims.push_back(planner::readPrimitive(a.file, a.primitive));
+    prims.push_back(data::readPrimitive(a.file, a.primitive));
   } else {
-    prims = planner::readPrimitives(a.file);
+    prims = data::readPrimitives(a.file);
   }
   std::cout << a.file << ": " << prims.size() << " primitive" << (prims.size() == 1 ? "" : "s") << "\n";
   nlohmann::json list = nlohmann::json::array();
   for (const auto& p : prims) {
-    const planner::PrimitiveSummary s = planner::summarize(p);
+    const data::PrimitiveSummary s = data::summarize(p);
     std::cout << "\n";
     printHuman(p, s);
     list.push_back(toJson(p, s));

@@ -15,10 +15,10 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "planner/arm_flywheel_problem.hpp"
-#include "planner/arm_trajectory_io.hpp"
+#include "data/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
-#include "planner/primitive_io.hpp"
-#include "planner/primitive_summary.hpp"
+#include "data/primitive_io.hpp"
+#include "data/primitive_summary.hpp"
 
 namespace centaur::cli {
 namespace {
@@ -39,12 +39,12 @@ std::string sidecarPath(const std::string& out, const std::string& name) {
 }
 
 // The solver line of the progress output and the solver fields of --json, the same for every primitive.
-void printSolveLine(const std::string& name, const planner::SolveInfo& info) {
+void printSolveLine(const std::string& name, const data::SolveInfo& info) {
   std::fprintf(stderr, "%s: %s after %d iterations in %.3f s, cost %.6g, max violation %.2e\n", name.c_str(),
                info.status.c_str(), info.iterations, info.solve_time_s, info.cost, info.max_constraint_violation);
 }
 
-nlohmann::json solveJson(const std::string& name, const planner::SolveInfo& info) {
+nlohmann::json solveJson(const std::string& name, const data::SolveInfo& info) {
   nlohmann::json j;
   j["primitive"] = name;
   j["status"] = info.status;
@@ -61,8 +61,8 @@ int runArmPlan(const PlanArgs& a) {
   if (!a.quiet) std::fprintf(stderr, "planning arm-flywheel (%s) ...\n", cfg.source.c_str());
   const planner::ArmFlywheelProblem problem(cfg);
   const planner::SolveResult result = problem.solve(!a.quiet);
-  const planner::ArmTrajectory tr = problem.toTrajectory(result);
-  planner::writeArmTrajectory(a.out, tr, a.append);
+  const data::ArmTrajectory tr = problem.toTrajectory(result);
+  data::writeArmTrajectory(a.out, tr, a.append);
   writeTextFileAtomic(sidecarPath(a.out, tr.name), tr.config_yaml);
   const bool ok = result.info.solved();
   const double h_mean = tr.h_ang.col(1).mean(), h_peak = tr.h_ang.col(1).maxCoeff();
@@ -99,10 +99,10 @@ int runPlan(const PlanArgs& a) {
                  problem.ocp().hessianNonzeros());
   }
   const planner::SolveResult result = problem.solve(!a.quiet);
-  const planner::Primitive prim = problem.toPrimitive(result);
-  planner::writePrimitives(a.out, {prim}, a.append ? planner::WriteMode::Append : planner::WriteMode::Replace);
+  const data::Primitive prim = problem.toPrimitive(result);
+  data::writePrimitives(a.out, {prim}, a.append ? data::WriteMode::Append : data::WriteMode::Replace);
   writeTextFileAtomic(sidecarPath(a.out, prim.name), prim.config_yaml);
-  const auto s = planner::summarize(prim);
+  const auto s = data::summarize(prim);
   const bool ok = result.info.solved();
   if (!a.quiet) {
     printSolveLine(prim.name, result.info);

@@ -12,7 +12,7 @@
 #include "cli/command.hpp"
 #include "cli/plot_primitive.hpp"
 #include "common/error.hpp"
-#include "planner/primitive_io.hpp"
+#include "data/primitive_io.hpp"
 
 namespace centaur::cli {
 namespace {
@@ -38,7 +38,7 @@ int runPlot(const PlotArgs& a) {
   if (!a.primitive.empty()) {
     names.push_back(a.primitive);
   } else {
-    names = planner::listPrimitives(a.file);
+    names = data::listPrimitives(a.file);
     if (names.empty()) throw InputError(a.file + ": the file holds no primitive (no group)");
   }
   std::string out = a.out;
@@ -49,7 +49,7 @@ int runPlot(const PlotArgs& a) {
 
   nlohmann::json outputs = nlohmann::json::array();
   for (const std::string& name : names) {
-    const planner::Primitive p = planner::readPrimitive(a.file, name);
+    const data::Primitive p = data::readPrimitive(a.file, name);
     const std::string png = outputFor(out, name, names.size() > 1);
     plotPrimitive(p, png, options);
     std::cout << "wrote " << png << " (" << name << ")" << std::endl;

@@ -17,7 +17,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
-#include "planner/primitive_summary.hpp"
+#include "data/primitive_summary.hpp"
 
 extern char** environ;
 
@@ -146,12 +146,12 @@ std::string footCurves(const std::string& data, int (*col)(int, int)) {
   for (int f = 0; f < 4; ++f) {  // legend in storage order
     const bool right = f == 1 || f == 3;
     g << ", keyentry w l lw " << (right ? "4.5" : "1.8") << " lc rgb '" << kFootColour[static_cast<std::size_t>(f)]
-      << "' t '" << planner::kFootNames[static_cast<std::size_t>(f)] << "'";
+      << "' t '" << data::kFootNames[static_cast<std::size_t>(f)] << "'";
   }
   return g.str();
 }
 
-void writeData(const planner::Primitive& p, const std::string& path) {
+void writeData(const data::Primitive& p, const std::string& path) {
   std::ofstream out(path);
   out << "# t force(FL,FR,RL,RR x,y,z) foot_pos(FL,FR,RL,RR x,y,z) base_pos(x,y,z)\n";
   char buf[32];
@@ -181,9 +181,9 @@ std::string fmtApex(double z) {
   return buf;
 }
 
-std::string buildScript(const planner::Primitive& p, const std::string& data, const std::string& png,
+std::string buildScript(const data::Primitive& p, const std::string& data, const std::string& png,
                         const PlotOptions& o) {
-  const planner::PrimitiveSummary s = planner::summarize(p);
+  const data::PrimitiveSummary s = data::summarize(p);
   const Eigen::Index n = p.t.size();
 
   // Phases: flight = all feet off; partial support = some feet off, some on.
@@ -192,7 +192,7 @@ std::string buildScript(const planner::Primitive& p, const std::string& data, co
     const double on = p.contact.row(i).sum();
     partial[static_cast<std::size_t>(i)] = on > 0.5 && on < 3.5;
   }
-  const auto partial_iv = planner::intervalsWhere(p.t, partial, true);
+  const auto partial_iv = data::intervalsWhere(p.t, partial, true);
 
   std::string title = o.title;
   if (title.empty()) {
@@ -298,7 +298,7 @@ std::string runGnuplot(const std::string& script) {
   return log;
 }
 
-void plotPrimitive(const planner::Primitive& p, const std::string& png_path, const PlotOptions& options) {
+void plotPrimitive(const data::Primitive& p, const std::string& png_path, const PlotOptions& options) {
   if (p.t.size() < 2) throw InputError("primitive '" + p.name + "' has fewer than 2 samples: nothing to plot");
   if (p.force.rows() != p.t.size() || p.foot_pos.rows() != p.t.size() || p.base_pos.rows() != p.t.size() ||
       p.contact.rows() != p.t.size() || p.force.cols() != 12 || p.foot_pos.cols() != 12 ||

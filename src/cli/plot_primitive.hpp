@@ -5,7 +5,7 @@
 // is written to a temporary sibling and renamed, so a failed plot never leaves a half-written image.
 #include <string>
 
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
 namespace centaur::cli {
 
@@ -23,6 +23,6 @@ bool gnuplotAvailable();
 std::string runGnuplot(const std::string& script);
 
 /// Draw `p` into the PNG file `png_path` (parent directories created). Throws RuntimeError on failure.
-void plotPrimitive(const planner::Primitive& p, const std::string& png_path, const PlotOptions& options = {});
+void plotPrimitive(const data::Primitive& p, const std::string& png_path, const PlotOptions& options = {});
 
 }  // namespace centaur::cli

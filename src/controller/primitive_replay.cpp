@@ -10,11 +10,11 @@
 namespace centaur {
 
 namespace {
-double scalarOr(const planner::Primitive& p, const char* key, double fallback) {
+double scalarOr(const data::Primitive& p, const char* key, double fallback) {
   auto it = p.scalars.find(key);
   return it == p.scalars.end() ? fallback : it->second;
 }
-void requireShape(const planner::Primitive& p, const planner::RowMatrix& m, long cols, const char* what) {
+void requireShape(const data::Primitive& p, const data::RowMatrix& m, long cols, const char* what) {
   if (m.rows() != p.t.size() || m.cols() != cols) {
     throw InputError("primitive '" + p.name + "': dataset " + what + " must be " + std::to_string(p.t.size()) +
                      " x " + std::to_string(cols) + ", it is " + std::to_string(m.rows()) + " x " +
@@ -23,7 +23,7 @@ void requireShape(const planner::Primitive& p, const planner::RowMatrix& m, long
 }
 }  // namespace
 
-PrimitiveReplay::PrimitiveReplay(const planner::Primitive& p) : name_(p.name) {
+PrimitiveReplay::PrimitiveReplay(const data::Primitive& p) : name_(p.name) {
   n_ = p.t.size();
   if (n_ < 2) throw InputError("primitive '" + p.name + "': needs at least 2 samples, it has " + std::to_string(n_));
   requireShape(p, p.foot_pos_rel, 12, "foot_pos_rel");

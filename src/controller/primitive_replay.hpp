@@ -23,7 +23,7 @@
 
 #include <Eigen/Core>
 
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
 namespace centaur {
 
@@ -43,7 +43,7 @@ struct ReplaySample {
 class PrimitiveReplay {
  public:
   /// Throws InputError naming the primitive if a dataset is missing or has the wrong shape.
-  explicit PrimitiveReplay(const planner::Primitive& primitive);
+  explicit PrimitiveReplay(const data::Primitive& primitive);
 
   /// The references at time t [s] since the primitive's start (nearest 1 kHz sample at or before t).
   void sample(double t, ReplaySample& out) const noexcept;
@@ -61,9 +61,9 @@ class PrimitiveReplay {
   std::string name_;
   double dt_ = 0.001, duration_ = 0.0;
   long n_ = 0;
-  planner::RowMatrix foot_rel_, foot_vel_rel_, force_, contact_, base_pos_, base_quat_;
+  data::RowMatrix foot_rel_, foot_vel_rel_, force_, contact_, base_pos_, base_quat_;
   Eigen::VectorXd knot_t_;
-  planner::RowMatrix knot_u_;
+  data::RowMatrix knot_u_;
   std::vector<std::array<Eigen::Vector3d, 4>> normals_;
   std::array<std::vector<double>, 4> lift_offs_, touch_downs_;
 };

@@ -34,7 +34,7 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
   if (chain_.dof() != kArmDof) throw InputError(mjcf + ": the arm must have 7 joints");
 
   // Limits: the left arm's, intersected with the mirrored right arm's (q_right = s q_left).
-  const auto s = armMirrorSigns();
+  const auto s = data::armMirrorSigns();
   const int n = kArmDof;
   q_lo_model_.resize(n), q_hi_model_.resize(n), qd_max_model_.resize(n), tau_max_model_.resize(n);
   q_lo_.resize(n), q_hi_.resize(n), qd_max_.resize(n), tau_max_.resize(n);
@@ -150,10 +150,10 @@ SolveResult ArmFlywheelProblem::solve(bool progress) const {
   return solveWithIpopt(ocp_, s);
 }
 
-ArmTrajectory ArmFlywheelProblem::toTrajectory(const SolveResult& result) const {
+data::ArmTrajectory ArmFlywheelProblem::toTrajectory(const SolveResult& result) const {
   const int n = kArmDof, N = cfg_.intervals;
   const double h = cfg_.period / N;
-  ArmTrajectory tr;
+  data::ArmTrajectory tr;
   for (const auto& L : chain_.links) tr.joint_names.push_back(L.joint);
   tr.period = cfg_.period;
   tr.solve = result.info;
@@ -209,7 +209,7 @@ ArmTrajectory ArmFlywheelProblem::toTrajectory(const SolveResult& result) const 
   return tr;
 }
 
-ArmTrajectory planArmFlywheel(const ArmFlywheelConfig& config, bool progress) {
+data::ArmTrajectory planArmFlywheel(const ArmFlywheelConfig& config, bool progress) {
   const ArmFlywheelProblem problem(config);
   return problem.toTrajectory(problem.solve(progress));
 }

@@ -15,7 +15,7 @@
 
 #include "model/serial_chain.hpp"
 #include "planner/arm_flywheel_config.hpp"
-#include "planner/arm_trajectory.hpp"
+#include "data/arm_trajectory.hpp"
 #include "planner/ipopt_solver.hpp"
 #include "planner/ocp.hpp"
 
@@ -32,7 +32,7 @@ class ArmFlywheelProblem {
 
   SolveResult solve(bool progress = false) const;
   /// Knots, 1 kHz samples (exact integration of the piecewise-constant qdd) and derived quantities.
-  ArmTrajectory toTrajectory(const SolveResult& result) const;
+  data::ArmTrajectory toTrajectory(const SolveResult& result) const;
 
  private:
   ArmFlywheelConfig cfg_;
@@ -43,6 +43,6 @@ class ArmFlywheelProblem {
 };
 
 /// Build, solve and sample with the given configuration.
-ArmTrajectory planArmFlywheel(const ArmFlywheelConfig& config, bool progress = false);
+data::ArmTrajectory planArmFlywheel(const ArmFlywheelConfig& config, bool progress = false);
 
 }  // namespace centaur::planner

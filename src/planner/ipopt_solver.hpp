@@ -8,7 +8,7 @@
 
 #include "common/yaml_reader.hpp"
 #include "planner/ocp.hpp"
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
 namespace centaur::planner {
 
@@ -28,7 +28,7 @@ struct SolverSettings {
 void readSolverSettings(centaur::YamlReader& section, SolverSettings& s);
 
 struct SolveResult {
-  SolveInfo info;
+  data::SolveInfo info;
   Eigen::VectorXd z;  ///< the final iterate (also when not converged)
   std::string ipopt_status;
 };

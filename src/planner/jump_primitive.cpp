@@ -23,9 +23,9 @@ void step(const double* q, const double* nu, const double* nu_dot, double h, dou
 
 }  // namespace
 
-Primitive JumpProblem::toPrimitive(const SolveResult& result, double sample_dt) const {
+data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sample_dt) const {
   const auto& P = cfg_.model;
-  Primitive out;
+  data::Primitive out;
   out.name = cfg_.primitive;
   out.solve = result.info;
   const Eigen::VectorXd& z = result.z;

@@ -13,7 +13,7 @@
 #include "planner/ipopt_solver.hpp"
 #include "planner/jump_config.hpp"
 #include "planner/ocp.hpp"
-#include "planner/primitive.hpp"
+#include "data/primitive.hpp"
 
 namespace centaur::planner {
 
@@ -36,7 +36,7 @@ class JumpProblem {
 
   SolveResult solve(bool progress) const;
   /// Knots + 1 kHz resampling (integration of the same dynamics with the piecewise-constant controls).
-  Primitive toPrimitive(const SolveResult& result, double sample_dt = 1e-3) const;
+  data::Primitive toPrimitive(const SolveResult& result, double sample_dt = 1e-3) const;
 
   // Index helpers into the decision vector.
   std::vector<int> idx(const char* var, int k, int first, int count) const;

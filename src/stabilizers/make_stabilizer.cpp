@@ -25,7 +25,8 @@ std::string stabilizerDefaultsYaml() {
          indent(OcpPostureParams::defaultsYaml());
 }
 
-std::unique_ptr<Stabilizer> makeStabilizer(const std::string& mode, YamlReader& r, const std::string& flywheel_file) {
+std::unique_ptr<Stabilizer> makeStabilizer(const std::string& mode, YamlReader& r, const std::string& flywheel_file,
+                                           const FlywheelSource& fallback) {
   RaibertParams raibert;
   AngmomParams angmom;
   OcpPostureParams ocp;
@@ -48,7 +49,10 @@ std::unique_ptr<Stabilizer> makeStabilizer(const std::string& mode, YamlReader& 
   if (mode == "none") return std::make_unique<NoStabilizer>();
   if (mode == "raibert") return std::make_unique<RaibertStabilizer>(raibert);
   if (mode == "angmom") return std::make_unique<AngmomStabilizer>(angmom);
-  if (mode == "ocp") return std::make_unique<OcpPostureStabilizer>(ocp);
+  if (mode == "ocp") {
+    if (ocp.flywheel_file.empty() && fallback) return std::make_unique<OcpPostureStabilizer>(ocp, fallback());
+    return std::make_unique<OcpPostureStabilizer>(ocp);
+  }
   throw InputError("stabilizer '" + mode + "' is not available (none, raibert, angmom, ocp)");
 }
 

@@ -2,20 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 
 #include "common/error.hpp"
 #include "common/yaml_reader.hpp"
 #include "controller/whole_body_controller.hpp"
-#include "planner/arm_flywheel_problem.hpp"
-#include "planner/arm_trajectory_io.hpp"
+#include "data/arm_trajectory_io.hpp"
 #include "stabilizers/stabilizer_stacks.hpp"
 
 namespace centaur {
 
 const char* OcpPostureParams::defaultsYaml() {
   return R"(ocp:                          # OCP postural task, stabilizer 3 (docs/stabilizers.md)
-  flywheel_file: ""              # HDF5 from `centaur plan arm-flywheel`; "" = plan it with the defaults (~1-3 s)
+  flywheel_file: ""              # HDF5 from `centaur plan arm-flywheel`; "" = the caller's plan (simulate: planned now)
   flywheel_group: arm-flywheel   # group in that file
   gamma_tau: 1.0                 # [1/rad] phase per radian of pitch: d tau/dt = gamma_tau omega_y, [0, 100]
   max_speed: 1.0                 # |d tau/dt| <= max_speed / period (1 = the planned speed), [0, 10]
@@ -43,7 +41,7 @@ void OcpPostureParams::read(YamlReader& r) {
   if (flywheel_group.empty()) r.fail("flywheel_group", "must not be empty");
 }
 
-void interpolatePeriodic(const planner::RowMatrix& table, double tau, Eigen::Ref<Eigen::VectorXd> out) noexcept {
+void interpolatePeriodic(const data::RowMatrix& table, double tau, Eigen::Ref<Eigen::VectorXd> out) noexcept {
   const Eigen::Index M = table.rows() - 1;
   if (M < 1 || !std::isfinite(tau)) {
     out = table.row(0).transpose();
@@ -56,26 +54,13 @@ void interpolatePeriodic(const planner::RowMatrix& table, double tau, Eigen::Ref
   for (Eigen::Index j = 0; j < table.cols(); ++j) out[j] = table(k, j) + f * (table(k + 1, j) - table(k, j));
 }
 
-std::shared_ptr<const planner::ArmTrajectory> defaultArmFlywheel() {
-  static std::mutex mutex;
-  static std::shared_ptr<const planner::ArmTrajectory> plan;
-  std::lock_guard<std::mutex> lock(mutex);
-  if (!plan) {
-    auto tr = std::make_shared<planner::ArmTrajectory>(
-        planner::planArmFlywheel(planner::loadArmFlywheelConfig("", {})));
-    if (!tr->solve.solved()) {
-      throw RuntimeError("ocp stabilizer: the default arm-flywheel plan did not converge (" + tr->solve.status +
-                         "); plan it with `centaur plan arm-flywheel` and set ocp.flywheel_file");
-    }
-    plan = tr;
-  }
-  return plan;
-}
-
 namespace {
-std::shared_ptr<const planner::ArmTrajectory> loadTrajectory(const OcpPostureParams& p) {
-  if (p.flywheel_file.empty()) return defaultArmFlywheel();
-  auto tr = std::make_shared<planner::ArmTrajectory>(planner::readArmTrajectory(p.flywheel_file, p.flywheel_group));
+std::shared_ptr<const data::ArmTrajectory> loadTrajectory(const OcpPostureParams& p) {
+  if (p.flywheel_file.empty()) {
+    throw InputError("ocp stabilizer: key 'ocp.flywheel_file' is empty: the OCP postural task needs an arm-flywheel "
+                     "plan (`centaur plan arm-flywheel --out F.h5`, then --flywheel F.h5)");
+  }
+  auto tr = std::make_shared<data::ArmTrajectory>(data::readArmTrajectory(p.flywheel_file, p.flywheel_group));
   if (!tr->solve.solved()) {
     throw InputError(p.flywheel_file, p.flywheel_group,
                      "the arm trajectory is flagged '" + tr->solve.status + "' (not converged); re-plan it");
@@ -90,15 +75,15 @@ OcpPostureStabilizer::OcpPostureStabilizer(OcpPostureParams params)
 }
 
 OcpPostureStabilizer::OcpPostureStabilizer(OcpPostureParams params,
-                                           std::shared_ptr<const planner::ArmTrajectory> trajectory)
+                                           std::shared_ptr<const data::ArmTrajectory> trajectory)
     : params_(std::move(params)), traj_(std::move(trajectory)) {
   if (!traj_) throw InputError("ocp stabilizer: no arm trajectory");
   init();
 }
 
 void OcpPostureStabilizer::init() {
-  const planner::ArmTrajectory& tr = *traj_;
-  const std::string where = params_.flywheel_file.empty() ? std::string("<default arm-flywheel plan>") : params_.flywheel_file;
+  const data::ArmTrajectory& tr = *traj_;
+  const std::string where = params_.flywheel_file.empty() ? std::string("<arm-flywheel plan in memory>") : params_.flywheel_file;
   if (tr.q.cols() != 7 || tr.q.rows() < 2 || tr.joint_names.size() != 7 || !(tr.period > 0.0)) {
     throw InputError(where + ": the arm trajectory needs 7 joints, >= 2 samples and a positive period");
   }
@@ -116,7 +101,7 @@ void OcpPostureStabilizer::init() {
   after_end_ = params_.after_end == "initial" ? AfterEnd::kInitial
                : params_.after_end == "hold"  ? AfterEnd::kHold
                                               : AfterEnd::kHome;
-  mirror_ = planner::armMirrorSigns();
+  mirror_ = data::armMirrorSigns();
   tau_ = params_.initial_phase;
   q_arm_.setZero(7);
 }

@@ -30,7 +30,7 @@
 
 #include <Eigen/Core>
 
-#include "planner/arm_trajectory.hpp"
+#include "data/arm_trajectory.hpp"
 #include "stabilizers/stabilizer.hpp"
 
 namespace centaur {
@@ -38,8 +38,8 @@ namespace centaur {
 class YamlReader;
 
 struct OcpPostureParams {
-  std::string flywheel_file;            ///< HDF5 file with group `flywheel_group`; "" = plan with the defaults (~1-3 s,
-                                        ///< once per process)
+  std::string flywheel_file;            ///< HDF5 file with group `flywheel_group`; "" = the trajectory is given by
+                                        ///< the caller (second constructor)
   std::string flywheel_group = "arm-flywheel";
   double gamma_tau = 1.0;               ///< [1/rad] phase per radian of pitch, [0, 100]
   double max_speed = 1.0;               ///< |d tau/dt| <= max_speed / period: 1 = the planned speed, [0, 10]
@@ -55,14 +55,15 @@ struct OcpPostureParams {
 
 /// Linear interpolation of eq. (posture_oc) in a periodic table (rows 0..M, uniform in tau, row M = row 0):
 /// tau is wrapped into [0, 1). No allocation (out must have table.cols() entries).
-void interpolatePeriodic(const planner::RowMatrix& table, double tau, Eigen::Ref<Eigen::VectorXd> out) noexcept;
+void interpolatePeriodic(const data::RowMatrix& table, double tau, Eigen::Ref<Eigen::VectorXd> out) noexcept;
 
 class OcpPostureStabilizer final : public Stabilizer {
  public:
-  /// Loads (or plans) the trajectory; InputError for a missing/invalid file, group or parameter.
+  /// Loads the trajectory from params.flywheel_file; InputError for an empty, missing or invalid file, group or
+  /// parameter. This stabilizer never plans: planning on demand belongs to the caller (sim/cli).
   explicit OcpPostureStabilizer(OcpPostureParams params);
   /// With a trajectory already in memory (tests, benchmarks).
-  OcpPostureStabilizer(OcpPostureParams params, std::shared_ptr<const planner::ArmTrajectory> trajectory);
+  OcpPostureStabilizer(OcpPostureParams params, std::shared_ptr<const data::ArmTrajectory> trajectory);
 
   const char* name() const override { return "ocp"; }
   std::string stackYaml() const override;
@@ -78,14 +79,14 @@ class OcpPostureStabilizer final : public Stabilizer {
   double phase() const { return tau_; }
   /// +1 if the phase advances with omega_y > 0, -1 if it runs backwards (plan with negative mean h_y).
   double direction() const { return direction_; }
-  const planner::ArmTrajectory& trajectory() const { return *traj_; }
+  const data::ArmTrajectory& trajectory() const { return *traj_; }
   const OcpPostureParams& params() const { return params_; }
 
  private:
   void init();
   OcpPostureParams params_;
-  std::shared_ptr<const planner::ArmTrajectory> traj_;
-  planner::RowMatrix table_;  // rows uniform in tau, last = first
+  std::shared_ptr<const data::ArmTrajectory> traj_;
+  data::RowMatrix table_;  // rows uniform in tau, last = first
   double direction_ = 1.0;
   std::vector<int> left_, right_;  // RobotModel joint indices (-1: not driven)
   Eigen::VectorXd q_home_, q_d_, q_arm_, q_from_;
@@ -95,8 +96,5 @@ class OcpPostureStabilizer final : public Stabilizer {
   bool was_active_ = false, ended_ = false;
   enum class AfterEnd { kHome, kInitial, kHold } after_end_ = AfterEnd::kHome;
 };
-
-/// The arm-flywheel plan with the embedded defaults, computed once per process (thread-safe) and shared.
-std::shared_ptr<const planner::ArmTrajectory> defaultArmFlywheel();
 
 }  // namespace centaur

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "planner/primitive_io.hpp"
+#include "data/primitive_io.hpp"
 #include "support/cli_run.hpp"
 
 namespace fs = std::filesystem;
@@ -76,7 +76,7 @@ TEST(PlanCli, SolverStoppedEarlyExits3WithTheFileFlagged) {
   const CliRun r = run("plan squat-jump --quiet --json --set solver.max_iter=3 --out " + out.string());
   EXPECT_EQ(r.code, 3) << r.out;
   ASSERT_TRUE(fs::exists(out));
-  const auto p = centaur::planner::readPrimitive(out.string(), "squat-jump");
+  const auto p = centaur::data::readPrimitive(out.string(), "squat-jump");
   EXPECT_EQ(p.solve.status, "max_iterations");
   const std::string last = r.out.substr(r.out.rfind('{'));
   const auto j = nlohmann::json::parse(last);

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "planner/primitive_io.hpp"
+#include "data/primitive_io.hpp"
 #include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
 

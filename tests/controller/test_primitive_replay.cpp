@@ -9,7 +9,7 @@
 
 #include "common/error.hpp"
 #include "controller/primitive_replay.hpp"
-#include "planner/synthetic_primitive.hpp"
+#include "support/synthetic_primitive.hpp"
 #include "support/allocation_counter.hpp"
 
 using namespace centaur;
@@ -17,8 +17,8 @@ using centaur::test::makeSyntheticJump;
 using centaur::test::SyntheticJump;
 
 namespace {
-planner::Primitive jump() {
-  planner::Primitive p = makeSyntheticJump("squat-jump");
+data::Primitive jump() {
+  data::Primitive p = makeSyntheticJump("squat-jump");
   p.scalars["wheel_radius"] = SyntheticJump::wheel_radius;
   p.scalars["ground_z"] = 0.0;
   return p;
@@ -26,7 +26,7 @@ planner::Primitive jump() {
 }  // namespace
 
 TEST(PrimitiveReplay, SamplesTheRowAtOrBeforeTAndHoldsTheEnds) {
-  const planner::Primitive p = jump();
+  const data::Primitive p = jump();
   const PrimitiveReplay replay(p);
   EXPECT_NEAR(replay.duration(), 1.0, 1e-12);
   ReplaySample s;
@@ -68,7 +68,7 @@ TEST(PrimitiveReplay, ContactEventsAndFlagsFollowThePlan) {
 }
 
 TEST(PrimitiveReplay, WallContactsGetTheWallNormalAndFloatingContactsAreRejected) {
-  planner::Primitive p = jump();
+  data::Primitive p = jump();
   const double wall_x = -2.0, r = SyntheticJump::wheel_radius;
   p.scalars["wall_x"] = wall_x;
   for (long i = 600; i < p.samples(); ++i) {  // the rear-left foot lands on the wall, 0.3 m up
@@ -85,7 +85,7 @@ TEST(PrimitiveReplay, WallContactsGetTheWallNormalAndFloatingContactsAreRejected
 }
 
 TEST(PrimitiveReplay, BaseAccelerationIsTheKnotControlInTheRobotLayout) {
-  const planner::Primitive p = jump();
+  const data::Primitive p = jump();
   const PrimitiveReplay replay(p);
   ReplaySample s;
   replay.sample(0.2505, s);  // knot interval 2 = [0.2, 0.3)
@@ -96,7 +96,7 @@ TEST(PrimitiveReplay, BaseAccelerationIsTheKnotControlInTheRobotLayout) {
 }
 
 TEST(PrimitiveReplay, BadShapesNameTheDataset) {
-  planner::Primitive p = jump();
+  data::Primitive p = jump();
   p.force.resize(10, 12);
   try {
     PrimitiveReplay replay(p);

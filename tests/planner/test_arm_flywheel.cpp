@@ -12,11 +12,12 @@
 #include "common/yaml_reader.hpp"
 #include "model/chain_from_mjcf.hpp"
 #include "planner/arm_flywheel_problem.hpp"
-#include "planner/arm_trajectory_io.hpp"
+#include "data/arm_trajectory_io.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace centaur;
 using namespace centaur::planner;
+using namespace centaur::data;
 
 namespace {
 

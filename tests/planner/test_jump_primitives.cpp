@@ -10,6 +10,7 @@
 
 using namespace centaur;
 using namespace centaur::planner;
+using namespace centaur::data;
 
 namespace {
 

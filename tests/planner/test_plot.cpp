@@ -15,8 +15,8 @@
 #include <sstream>
 
 #include "common/error.hpp"
-#include "planner/primitive_io.hpp"
-#include "synthetic_primitive.hpp"
+#include "data/primitive_io.hpp"
+#include "support/synthetic_primitive.hpp"
 
 // The CLI is an executable, not a library: compile its plotting helper into this test directly.
 #include "cli/plot_primitive.cpp"  // NOLINT(bugprone-suspicious-include)
@@ -107,7 +107,7 @@ TEST(PlotPrimitive, DrawsANonBlankFigureWithAllCurvesAndShading) {
     fs::create_directories(keep);
     centaur::cli::PlotOptions full;
     centaur::cli::plotPrimitive(jump, (fs::path(keep) / "synthetic-jump.png").string(), full);
-    centaur::planner::writePrimitives((fs::path(keep) / "synthetic.h5").string(),
+    centaur::data::writePrimitives((fs::path(keep) / "synthetic.h5").string(),
                                       {jump, centaur::test::makeSyntheticJump("second-jump", 0.5)});
   }
 }

@@ -21,7 +21,7 @@ using namespace centaur::sim;
 
 namespace {
 
-const std::string kTestModel = std::string(CENTAUR_SOURCE_DIR) + "/tests/data/sim_test_robot.xml";
+const std::string kTestModel = std::string(CENTAUR_SOURCE_DIR) + "/tests/testdata/sim_test_robot.xml";
 
 // How many controller factories run at the same time, per group label ("" = ungrouped), and the maximum seen.
 std::atomic<int> g_active[2];

@@ -16,7 +16,7 @@ using namespace centaur::sim;
 
 TEST(JumpController, TicksNeverAllocateThroughPushOffFlightAndLanding) {
   const planner::JumpProblem problem(planner::loadJumpConfig("squat-jump", "", {}));
-  const planner::Primitive primitive = problem.toPrimitive(problem.solve(false));
+  const data::Primitive primitive = problem.toPrimitive(problem.solve(false));
   for (const char* mode : {"none", "raibert", "angmom"}) {
     SimConfig cfg = loadSimConfig(findScenario("squat-jump")->defaults_yaml, "", {"controller.settle_time=0"});
     MujocoRobot robot(cfg.robot);

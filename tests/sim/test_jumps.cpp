@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "planner/jump_problem.hpp"
-#include "planner/primitive_io.hpp"
+#include "data/primitive_io.hpp"
 #include "sim/jump_observer.hpp"
 #include "sim/mujoco_robot.hpp"
 #include "sim/sim_config.hpp"
@@ -30,14 +30,14 @@ class Jumps : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = std::make_unique<centaur_test::TempDir>("centaur-jumps");
     file_ = (dir_->path() / "primitives.h5").string();
-    std::vector<planner::Primitive> prims;
+    std::vector<data::Primitive> prims;
     for (const char* name : {"squat-jump", "half-squat-jump"}) {
       const planner::JumpProblem problem(planner::loadJumpConfig(name, "", {}));
       const planner::SolveResult r = problem.solve(false);
       ASSERT_TRUE(r.info.solved()) << name;
       prims.push_back(problem.toPrimitive(r));
     }
-    planner::writePrimitives(file_, prims);
+    data::writePrimitives(file_, prims);
   }
   static void TearDownTestSuite() { dir_.reset(); }
 
@@ -87,7 +87,7 @@ TEST_F(Jumps, ReplayTracksThePlanAndCommandsStayFiniteAndWithinLimits) {
   auto stabilizer = makeStabilizer("raibert", section);
   section.finish();
   params.wbc.dt = robot.controlPeriodSeconds();
-  JumpController ctrl(cfg.robot.model_path, planner::readPrimitive(file_, "squat-jump"), std::move(stabilizer), params);
+  JumpController ctrl(cfg.robot.model_path, data::readPrimitive(file_, "squat-jump"), std::move(stabilizer), params);
 
   const mjModel* m = robot.model();
   const int pelvis = mj_name2id(m, mjOBJ_BODY, "pelvis");

@@ -1,5 +1,5 @@
 // ctest-labels: sim physics
-// The MuJoCo backend on a tiny purpose-built model (tests/data/sim_test_robot.xml): impedance law and
+// The MuJoCo backend on a tiny purpose-built model (tests/testdata/sim_test_robot.xml): impedance law and
 // saturation at every 2 kHz physics step, controller at exactly 1 kHz, measurement delay, IMU and
 // ground-truth contact forces, wall placement.
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@ using namespace centaur::sim;
 
 namespace {
 
-const std::string kModel = std::string(CENTAUR_SOURCE_DIR) + "/tests/data/sim_test_robot.xml";
+const std::string kModel = std::string(CENTAUR_SOURCE_DIR) + "/tests/testdata/sim_test_robot.xml";
 
 SimSettings testSettings() {
   SimSettings s;

@@ -47,7 +47,7 @@ Scenario withObserver(Scenario s) {
 const ScenarioRegistrar kRegistrar{withObserver(Scenario{
     "test-scenario", "a scenario registered by a test",
     "duration: 0.05\nmodel: " + std::string(CENTAUR_SOURCE_DIR) +
-        "/tests/data/sim_test_robot.xml\ncontroller: {gain: 2.0}\n",
+        "/tests/testdata/sim_test_robot.xml\ncontroller: {gain: 2.0}\n",
     {{"primitive", "primitive file", "", {}, true},
      {"stabilizer", "stabilizer", "none", {"none", "raibert", "angmom", "ocp"}, false}},
     [](ScenarioContext& ctx) -> std::unique_ptr<Controller> {

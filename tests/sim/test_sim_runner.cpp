@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kTestModel = std::string(CENTAUR_SOURCE_DIR) + "/tests/data/sim_test_robot.xml";
+const std::string kTestModel = std::string(CENTAUR_SOURCE_DIR) + "/tests/testdata/sim_test_robot.xml";
 
 fs::path tempDir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("centaur_sim_test_" + name + "_" + std::to_string(::getpid()));

@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "common/error.hpp"
-#include "planner/arm_trajectory_io.hpp"
+#include "data/arm_trajectory_io.hpp"
 #include "stabilizers/ocp_posture_stabilizer.hpp"
 #include "support/cli_run.hpp"
 #include "support/temp_dir.hpp"
@@ -35,7 +35,7 @@ TEST(ArmFlywheelCli, WritesTheTrajectoryAndPrintsJson) {
   EXPECT_GT(j["iterations"].get<int>(), 0);
   EXPECT_GT(j["h_y_mean_Nms"].get<double>(), 1.0);
   EXPECT_LE(j["max_torque_ratio"].get<double>(), 1.0);
-  const auto tr = centaur::planner::readArmTrajectory(out);
+  const auto tr = centaur::data::readArmTrajectory(out);
   EXPECT_EQ(tr.solve.status, "solved");
   EXPECT_EQ(tr.q.rows(), 1001);
   EXPECT_TRUE(fs::exists(dir.file("flywheel.arm-flywheel.yaml")));
@@ -65,7 +65,7 @@ TEST(ArmFlywheelCli, NotConvergedExitsThreeAndIsFlagged) {
   const CliRun r = run("plan arm-flywheel --out " + out + " --set solver.max_iter=3 --quiet --json");
   EXPECT_EQ(r.code, 3) << r.out;
   ASSERT_TRUE(fs::exists(out));
-  EXPECT_NE(centaur::planner::readArmTrajectory(out).solve.status, "solved");
+  EXPECT_NE(centaur::data::readArmTrajectory(out).solve.status, "solved");
   centaur::OcpPostureParams p;
   p.flywheel_file = out;
   EXPECT_THROW(centaur::OcpPostureStabilizer{p}, centaur::InputError);

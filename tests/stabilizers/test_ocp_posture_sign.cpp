@@ -9,11 +9,19 @@
 #include <cstdio>
 
 #include "model/robot_model.hpp"
+#include "planner/arm_flywheel_problem.hpp"
 #include "stabilizers/ocp_posture_stabilizer.hpp"
 
 using namespace centaur;
 
 namespace {
+
+/// The arm-flywheel plan with the embedded defaults, planned once for this test binary.
+std::shared_ptr<const data::ArmTrajectory> defaultArmFlywheel() {
+  static const auto plan = std::make_shared<const data::ArmTrajectory>(
+      planner::planArmFlywheel(planner::loadArmFlywheelConfig("", {})));
+  return plan;
+}
 
 const std::string kModel = std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml";
 

@@ -16,15 +16,15 @@
 #include "support/allocation_counter.hpp"
 
 using namespace centaur;
-using planner::RowMatrix;
+using data::RowMatrix;
 
 namespace {
 
 const std::string kModel = std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml";
 
 // A synthetic periodic plan: q_j(t) = a_j sin(2 pi t / T + phi_j) + c_j, M + 1 rows, h_y > 0 (sign set by `h`).
-std::shared_ptr<planner::ArmTrajectory> synthetic(int M = 100, double h = 1.0) {
-  auto tr = std::make_shared<planner::ArmTrajectory>();
+std::shared_ptr<data::ArmTrajectory> synthetic(int M = 100, double h = 1.0) {
+  auto tr = std::make_shared<data::ArmTrajectory>();
   for (int i = 1; i <= 7; ++i) tr->joint_names.push_back("j_arm1_" + std::to_string(i));
   tr->period = 1.0;
   tr->t = Eigen::VectorXd::LinSpaced(M + 1, 0.0, 1.0);
@@ -145,7 +145,7 @@ TEST(OcpPosture, BothArmsReplayThePlanTheRightOneMirroredOtherJointsAtHome) {
   st.step(stateWithPitchRate(r, 0.0), 0.001, true);
   Eigen::VectorXd qs(7);
   interpolatePeriodic(tr->q, 0.25, qs);
-  const auto s = planner::armMirrorSigns();
+  const auto s = data::armMirrorSigns();
   const Eigen::VectorXd& qd = st.postureReference();
   for (int j = 0; j < 7; ++j) {
     EXPECT_DOUBLE_EQ(qd[r.idx("j_arm1_" + std::to_string(j + 1))], qs[j]);
@@ -276,6 +276,13 @@ TEST(OcpPosture, ParametersAreValidated) {
   OcpPostureParams missing;
   missing.flywheel_file = "/nonexistent/arm.h5";
   EXPECT_THROW(OcpPostureStabilizer{missing}, InputError);
+  // the stabilizer never plans: no file and no trajectory from the caller is an error naming the key
+  try {
+    OcpPostureStabilizer st{OcpPostureParams{}};
+    ADD_FAILURE() << "an empty flywheel_file must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ocp.flywheel_file"), std::string::npos) << e.what();
+  }
   // a robot without the right arm's joints is refused at start()
   OcpPostureStabilizer ok(noBlend(), synthetic());
   EXPECT_THROW(ok.start({"j_arm1_1"}, Eigen::VectorXd::Zero(1)), InputError);
