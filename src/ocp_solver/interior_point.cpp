@@ -260,13 +260,14 @@ void Ipm::initialize() {
   zu_.setZero(n_);
   vl_.setZero(m_);
   vu_.setZero(m_);
-  for (int i = 0; i < n_; ++i) {  // cold: bound_mult_init; warm: complementarity mu
-    if (has_xl_[i]) zl_[i] = warm ? mu_ / (x_[i] - xl_[i]) : opt_.bound_mult_init;
-    if (has_xu_[i]) zu_[i] = warm ? mu_ / (xu_[i] - x_[i]) : opt_.bound_mult_init;
+  const bool compl_mult = warm && warm_->complementary_multipliers;
+  for (int i = 0; i < n_; ++i) {  // bound_mult_init, or (warm) complementarity mu
+    if (has_xl_[i]) zl_[i] = compl_mult ? mu_ / (x_[i] - xl_[i]) : opt_.bound_mult_init;
+    if (has_xu_[i]) zu_[i] = compl_mult ? mu_ / (xu_[i] - x_[i]) : opt_.bound_mult_init;
   }
   for (int r = 0; r < m_; ++r) {
-    if (has_gl_[r]) vl_[r] = warm ? mu_ / (s_[r] - gl_[r]) : opt_.bound_mult_init;
-    if (has_gu_[r]) vu_[r] = warm ? mu_ / (gu_[r] - s_[r]) : opt_.bound_mult_init;
+    if (has_gl_[r]) vl_[r] = compl_mult ? mu_ / (s_[r] - gl_[r]) : opt_.bound_mult_init;
+    if (has_gu_[r]) vu_[r] = compl_mult ? mu_ / (gu_[r] - s_[r]) : opt_.bound_mult_init;
   }
   y_.setZero(m_);
   grad_.resize(n_);
@@ -336,7 +337,18 @@ IpmResult Ipm::run() {
       res.status = IpmStatus::kNumericalTrouble;
       break;
     }
-    if (!lineSearch()) {
+    bool stepped = lineSearch();
+    if (!stepped && adaptive_ && free_mode_) {
+      // The free barrier parameter gave a step the filter cannot accept (typically mu far below the constraint
+      // violation): retry once in the monotone mode before the restoration phase.
+      enterMonotoneMode();
+      if (!computeDirection()) {
+        res.status = IpmStatus::kNumericalTrouble;
+        break;
+      }
+      stepped = lineSearch();
+    }
+    if (!stepped) {
       if (!restoration()) {
         res.status = IpmStatus::kRestorationFailed;
         break;

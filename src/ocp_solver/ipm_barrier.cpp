@@ -87,6 +87,14 @@ void Ipm::rememberProgress() {
   progress_filter_.add(th - margin, f_ - margin);
 }
 
+void Ipm::enterMonotoneMode() {
+  free_mode_ = false;
+  ++stats_.mode_switches;
+  mu_ = std::max(kMuMin, std::min(mu_max_, kMonotoneInitFactor * averageComplementarity()));
+  tau_ = std::max(kTauMin, 1.0 - mu_);
+  filter_.reset(filter_.thetaMax());
+}
+
 // Called before the direction: monotone updates, or the adaptive mode switches.
 void Ipm::updateBarrier() {
   if (!adaptive_ || averageComplementarity() <= 0.0) {
@@ -97,11 +105,7 @@ void Ipm::updateBarrier() {
   if (mu_max_ == 0.0) mu_max_ = kMuMaxFact * averageComplementarity();
   if (free_mode_) {
     if (stats_.iterations > 0 && !progressAcceptable()) {  // no progress: fixed (monotone) mode
-      free_mode_ = false;
-      ++stats_.mode_switches;
-      mu_ = std::max(kMuMin, std::min(mu_max_, kMonotoneInitFactor * averageComplementarity()));
-      tau_ = std::max(kTauMin, 1.0 - mu_);
-      filter_.reset(filter_.thetaMax());
+      enterMonotoneMode();
       return;
     }
     rememberProgress();

@@ -39,6 +39,7 @@ class Ipm {
   // barrier parameter (ipm_barrier.cpp)
   void updateBarrier();
   void monotoneUpdate();
+  void enterMonotoneMode();  // adaptive: leave the free mode, mu from the average complementarity
   bool adaptiveDirection();
   double averageComplementarity() const;
   double qualityFunction(const Direction& aff, const Direction& cen, double sigma, double tau) const;
