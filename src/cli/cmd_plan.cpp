@@ -1,4 +1,5 @@
 // centaur plan squat-jump|half-squat-jump|arm-flywheel [--config F.yaml] [--set key=value]... --out F.h5 [--append] [--json]
+//   [--warm-start F.h5[:group]] (jumps only: start from a neighbouring primitive's knots)
 // Plans a lower-body primitive with the template-model OCP (Ipopt) and writes it to the primitive database;
 // arm-flywheel plans the periodic arm trajectory of stabilizer 3 (fixed-base arm OCP, group "arm-flywheel").
 // Exit codes: 0 solved; 2 bad input (file, key and allowed range named; no output written);
@@ -31,7 +32,20 @@ struct PlanArgs {
   bool append = false;
   bool json = false;
   bool quiet = false;
+  std::string warm_start;  // F.h5[:group]
 };
+
+// The start of a warm-started plan: the knots of primitive `group` (default: the one being planned) in `file`.
+Eigen::VectorXd warmStartPoint(const planner::JumpProblem& problem, const PlanArgs& a) {
+  std::string file = a.warm_start, group = a.primitive;
+  const auto colon = a.warm_start.rfind(':');
+  if (colon != std::string::npos && a.warm_start.find('/', colon) == std::string::npos) {  // F.h5:group
+    file = a.warm_start.substr(0, colon);
+    group = a.warm_start.substr(colon + 1);
+  }
+  if (file.empty() || group.empty()) throw InputError("--warm-start '" + a.warm_start + "': expected F.h5[:group]");
+  return problem.decisionVector(data::readPrimitive(file, group), "--warm-start " + file + ":" + group);
+}
 
 std::string sidecarPath(const std::string& out, const std::string& name) {
   std::filesystem::path p(out);
@@ -98,7 +112,10 @@ int runArmPlan(const PlanArgs& a) {
 }
 
 int runPlan(const PlanArgs& a) {
-  if (a.primitive == "arm-flywheel") return runArmPlan(a);
+  if (a.primitive == "arm-flywheel") {
+    if (!a.warm_start.empty()) throw InputError("--warm-start: only for squat-jump and half-squat-jump");
+    return runArmPlan(a);
+  }
   const planner::JumpConfig cfg = planner::loadJumpConfig(a.primitive, a.config, a.overrides);
   if (!a.quiet) std::fprintf(stderr, "planning %s (%s) ...\n", a.primitive.c_str(), cfg.source.c_str());
   const planner::JumpProblem problem(cfg);
@@ -107,7 +124,9 @@ int runPlan(const PlanArgs& a) {
                  problem.ocp().numVariables(), problem.ocp().numConstraints(), problem.ocp().jacobianNonzeros(),
                  problem.ocp().hessianNonzeros());
   }
-  const planner::SolveResult result = problem.solve(!a.quiet);
+  Eigen::VectorXd x0;
+  if (!a.warm_start.empty()) x0 = warmStartPoint(problem, a);
+  const planner::SolveResult result = problem.solve(!a.quiet, a.warm_start.empty() ? nullptr : &x0);
   const data::Primitive prim = problem.toPrimitive(result);
   data::writePrimitives(a.out, {prim}, a.append ? data::WriteMode::Append : data::WriteMode::Replace);
   writeTextFileAtomic(sidecarPath(a.out, prim.name), prim.config_yaml);
@@ -145,6 +164,9 @@ const Registrar kPlan{{"plan", "Plan a lower-body primitive (template-model OCP 
                          sub.add_flag("--append", a->append, "add to (or replace in) an existing file");
                          sub.add_flag("--json", a->json, "print a JSON summary as the last line of stdout");
                          sub.add_flag("--quiet", a->quiet, "no progress on stderr");
+                         sub.add_option("--warm-start", a->warm_start,
+                                        "start from the knots of a neighbouring primitive F.h5[:group] (same horizon; "
+                                        "group defaults to the primitive planned)");
                          return [a]() { return runPlan(*a); };
                        }}};
 

@@ -43,7 +43,8 @@ struct IpmOptions {
 struct WarmStart {
   Eigen::VectorXd x, y, z_l, z_u;  ///< unscaled
   double mu_init = 1e-4;           ///< barrier parameter to start from
-  double bound_push = 1e-5;        ///< how far x is pushed off its bounds (relative, as bound_push)
+  double bound_push = 1e-6;        ///< how far x is pushed off its bounds (relative, as bound_push)
+  bool complementary_multipliers = false;  ///< bound multipliers mu / slack (else bound_mult_init, as Ipopt)
 };
 
 enum class IpmStatus {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 
+#include "common/error.hpp"
 #include "common/yaml_reader.hpp"
 #include "planner/solve_ocp.hpp"
 #include "planner/template_elements.hpp"
@@ -300,10 +301,27 @@ void JumpProblem::buildGuess() {
   }
 }
 
-SolveResult JumpProblem::solve(bool progress) const {
+SolveResult JumpProblem::solve(bool progress, const Eigen::VectorXd* x0) const {
   SolverSettings s = cfg_.solver;
   s.progress = progress;
-  return solveOcp(ocp_, s);
+  return solveOcp(ocp_, s, x0);
+}
+
+Eigen::VectorXd JumpProblem::decisionVector(const data::Primitive& p, const std::string& source) const {
+  const int nx = ocp_.nx(), nu = ocp_.nu();
+  if (p.knot_x.rows() != N_ + 1 || p.knot_x.cols() != nx || p.knot_u.rows() != N_ || p.knot_u.cols() != nu) {
+    throw InputError(source + ": primitive '" + p.name + "' has " + std::to_string(p.knot_x.rows() - 1) +
+                     " intervals of " + std::to_string(p.knot_x.cols()) + " states and " +
+                     std::to_string(p.knot_u.cols()) + " controls; this problem has " + std::to_string(N_) + ", " +
+                     std::to_string(nx) + " and " + std::to_string(nu) + " (plan the neighbour with the same horizon)");
+  }
+  Eigen::VectorXd z = ocp_.guess();
+  for (int k = 0; k <= N_; ++k) {
+    z.segment(ocp_.index("q", k, 0), nx) = p.knot_x.row(k).transpose();
+    if (k < N_) z.segment(ocp_.index("nu_dot", k, 0), nu) = p.knot_u.row(k).transpose();
+  }
+  if (!z.allFinite()) throw InputError(source + ": primitive '" + p.name + "' has non-finite knots");
+  return z;
 }
 
 }  // namespace centaur::planner

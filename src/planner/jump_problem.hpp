@@ -34,7 +34,11 @@ class JumpProblem {
   /// Surface index of foot i on interval k, or -1 in swing/flight.
   int contactSurface(int foot, int interval) const { return schedule_[foot][interval]; }
 
-  SolveResult solve(bool progress) const;
+  /// Solve from the default guess, or from `x0` (a warm start, e.g. decisionVector() of a neighbouring primitive).
+  SolveResult solve(bool progress, const Eigen::VectorXd* x0 = nullptr) const;
+  /// The decision vector of a primitive planned on the same horizon (its knots), for a warm start; InputError
+  /// naming `source` if the numbers of intervals, states or controls differ.
+  Eigen::VectorXd decisionVector(const data::Primitive& p, const std::string& source) const;
   /// Knots + 1 kHz resampling (integration of the same dynamics with the piecewise-constant controls).
   data::Primitive toPrimitive(const SolveResult& result, double sample_dt = 1e-3) const;
 
