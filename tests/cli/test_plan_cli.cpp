@@ -85,3 +85,27 @@ TEST(PlanCli, SolverStoppedEarlyExits3WithTheFileFlagged) {
   for (const char* k : {"solve_time_s", "cost", "max_constraint_violation"}) EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_TRUE(fs::exists(d / "f.squat-jump.yaml")) << "effective configuration saved next to the output";
 }
+
+TEST(PlanCli, RiccatiBackendStoppedEarlyExits3WithTheFileFlagged) {
+  const fs::path d = tempDir(), out = d / "g.h5";
+  const CliRun r = run("plan squat-jump --quiet --set solver.backend=riccati --set solver.max_iter=3 --out " + out.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  ASSERT_TRUE(fs::exists(out));
+  EXPECT_EQ(centaur::data::readPrimitive(out.string(), "squat-jump").solve.status, "max_iterations");
+}
+
+TEST(PlanCli, WarmStartFromAMissingFileGroupOrOtherHorizonIsBadInput) {
+  const fs::path d = tempDir(), out = d / "h.h5", neighbour = d / "short.h5";
+  expectRefused("plan squat-jump --warm-start " + (d / "missing.h5").string() + " --out " + out.string(), out,
+                {"missing.h5"});
+  // A neighbour planned on 12 intervals (stopped early: only its knots matter here).
+  const CliRun w = run("plan squat-jump --quiet --set solver.max_iter=1 --set horizon.intervals=12 "
+                       "--set horizon.takeoff=4 --set horizon.landing=8 --out " + neighbour.string());
+  ASSERT_EQ(w.code, 3) << w.out;
+  expectRefused("plan squat-jump --warm-start " + neighbour.string() + " --out " + out.string(), out,
+                {"short.h5", "12 intervals"});
+  expectRefused("plan squat-jump --warm-start " + neighbour.string() + ":nope --out " + out.string(), out,
+                {"short.h5", "nope"});
+  expectRefused("plan arm-flywheel --warm-start " + neighbour.string() + " --out " + out.string(), out,
+                {"--warm-start"});
+}
