@@ -9,7 +9,8 @@ CENTAUR = $(BUILD)/src/cli/centaur
 # Every Debian package the project needs (build, run, render, plot).
 DEBS = cmake make g++ pkg-config libeigen3-dev coinor-libipopt-dev libopenblas0-pthread \
        libmujoco-dev libqhull-dev libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev \
-       libhdf5-dev libcli11-dev nlohmann-json3-dev libosmesa6-dev libstb-dev ffmpeg gnuplot-nox
+       libhdf5-dev libcli11-dev nlohmann-json3-dev libosmesa6-dev libstb-dev ffmpeg gnuplot-nox \
+       libopenmpi-dev openmpi-bin python3-h5py
 
 .PHONY: all deps configure build demo test bench clean
 
