@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "common/number_text.hpp"
 #include "common/stats.hpp"
@@ -135,35 +136,13 @@ Interval wilson(std::size_t k, std::size_t n, double z) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
-Summary summarize(const RunContext& ctx, const std::vector<RunRecord>& unsorted, const std::string& dir) {
-  const SweepSpec& spec = *ctx.spec;
-  std::vector<RunRecord> records = unsorted;
-  std::sort(records.begin(), records.end(), [](const RunRecord& a, const RunRecord& b) { return a.run < b.run; });
-  const std::vector<std::vector<std::size_t>> at = valueIndices(spec, ctx.index);
+namespace {
 
-  // Tallies per (jump, mode) and per (axis, value, jump, mode).
-  std::map<std::pair<std::string, std::size_t>, Tally> by_mode;
-  std::map<std::tuple<std::size_t, std::size_t, std::string, std::size_t>, Tally> by_value;
-  Tally all;
-  for (const RunRecord& r : records) {
-    const RunId id = runId(spec, static_cast<std::size_t>(r.run));
-    const std::string& jump = ctx.index.points[id.point].jump;
-    all.add(r);
-    by_mode[{jump, id.mode}].add(r);
-    for (std::size_t a = 0; a < spec.axes.size(); ++a) by_value[{a, at[id.point][a], jump, id.mode}].add(r);
-  }
+using ModeKey = std::pair<std::string, std::size_t>;                                  // jump, mode
+using ValueKey = std::tuple<std::size_t, std::size_t, std::string, std::size_t>;     // axis, value, jump, mode
 
-  Summary s;
-  json& j = s.json;
-  j["dir"] = dir;
-  j["runs"] = {{"total", spec.runs()}, {"finished", records.size()}, {"simulated", all.n}, {"successes", all.k},
-               {"errors", all.outcomes[kOutcomeError]}, {"not_planned", all.outcomes[kOutcomeNotPlanned]}};
-  std::ostringstream md;
-  md << "# centaur sweep: " << dir << "\n\n"
-     << records.size() << " of " << spec.runs() << " runs finished; " << all.n << " simulated to their end, "
-     << all.outcomes[kOutcomeError] << " failed (error), " << all.outcomes[kOutcomeNotPlanned]
-     << " not simulated because their grid point's plan did not converge. Spec: sweep.yaml. Rates: successes / runs "
-        "simulated, with Wilson 95 % score intervals.\n\n## Success per jump and mode\n\n"
+void modesSection(const SweepSpec& spec, const std::map<ModeKey, Tally>& by_mode, json& j, std::ostringstream& md) {
+  md << "## Success per jump and mode\n\n"
      << "| jump | mode | runs | successes | rate | 95 % interval | peak pitch [deg] median [p05, p95] (max) | outcomes |\n"
      << "|---|---|---:|---:|---:|---|---|---|\n";
   j["modes"] = json::array();
@@ -177,17 +156,21 @@ Summary summarize(const RunContext& ctx, const std::vector<RunRecord>& unsorted,
        << " | ";
     if (!t.peak_pitch.empty()) {
       md << fmt("%.2f", median(t.peak_pitch)) << " [" << fmt("%.2f", percentile(t.peak_pitch, 0.05)) << ", "
-         << fmt("%.2f", percentile(t.peak_pitch, 0.95)) << "] (" << fmt("%.2f", *std::max_element(t.peak_pitch.begin(), t.peak_pitch.end())) << ")";
+         << fmt("%.2f", percentile(t.peak_pitch, 0.95)) << "] ("
+         << fmt("%.2f", *std::max_element(t.peak_pitch.begin(), t.peak_pitch.end())) << ")";
     } else {
       md << "-";
     }
     md << " | " << outcomeText(t) << " |\n";
   }
+}
+
+void axesSection(const SweepSpec& spec, const std::map<ValueKey, Tally>& by_value, json& j, std::ostringstream& md) {
   j["axes"] = json::array();
-  if (!spec.axes.empty()) {
-    md << "\n## Success per axis value\n\n| axis | value | jump | mode | runs | successes | rate | 95 % interval |\n"
-       << "|---|---:|---|---|---:|---:|---:|---|\n";
-  }
+  if (spec.axes.empty()) return;
+  md << "\n## Success per axis value (pooled over the other axes)\n\n"
+     << "| axis | value | jump | mode | runs | successes | rate | 95 % interval |\n"
+     << "|---|---:|---|---|---:|---:|---:|---|\n";
   for (const auto& [key, t] : by_value) {
     const auto& [a, v, jump, mode] = key;
     json row = rateJson(t);
@@ -199,30 +182,72 @@ Summary summarize(const RunContext& ctx, const std::vector<RunRecord>& unsorted,
     md << "| " << spec.axes[a].key << " | " << spec.axes[a].values[v].yaml() << " | " << jump << " | "
        << spec.modes[mode] << " | " << t.n << " | " << t.k << " | " << rateText(t) << " |\n";
   }
-  // Plans that did not converge.
+}
+
+void plansSection(const RunContext& ctx, json& j, std::ostringstream& md) {
   j["plans_not_converged"] = json::array();
   for (const data::GridEntry& e : ctx.index.points) {
     if (e.solve_status != "solved") j["plans_not_converged"].push_back({{"group", e.group}, {"status", e.solve_status}});
   }
-  if (!j["plans_not_converged"].empty()) {
-    md << "\n## Plans that did not converge (their runs are not simulated)\n\n";
-    for (const auto& p : j["plans_not_converged"]) md << "- " << p["group"].get<std::string>() << ": " << p["status"].get<std::string>() << "\n";
+  if (j["plans_not_converged"].empty()) return;
+  md << "\n## Plans that did not converge (their runs are not simulated)\n\n";
+  for (const auto& p : j["plans_not_converged"]) {
+    md << "- " << p["group"].get<std::string>() << ": " << p["status"].get<std::string>() << "\n";
   }
-  // Every run that did not succeed, with the command that replays it alone.
+}
+
+/// Every run that did not succeed (and was simulated or failed), with the command that replays it alone.
+void failuresSection(const RunContext& ctx, const std::vector<RunRecord>& records, json& j, std::ostringstream& md) {
+  const SweepSpec& spec = *ctx.spec;
   j["failed_runs"] = json::array();
   std::ostringstream cmds;
   for (const RunRecord& r : records) {
     if (r.success() || r.outcome == kOutcomeNotPlanned) continue;
     const RunId id = runId(spec, static_cast<std::size_t>(r.run));
+    const std::string& group = ctx.index.points[id.point].group;
     const std::string cmd = replayCommand(ctx, static_cast<std::size_t>(r.run));
-    j["failed_runs"].push_back({{"run", r.run}, {"group", ctx.index.points[id.point].group},
-                                {"mode", spec.modes[id.mode]}, {"outcome", r.outcome}, {"error", r.error},
-                                {"command", cmd}});
-    cmds << "# run " << r.run << " (" << ctx.index.points[id.point].group << ", " << spec.modes[id.mode] << ", seed "
-         << id.seed_index << "): " << r.outcome << (r.error.empty() ? "" : ": " + r.error) << "\n" << cmd << "\n";
+    j["failed_runs"].push_back({{"run", r.run}, {"group", group}, {"mode", spec.modes[id.mode]},
+                                {"outcome", r.outcome}, {"error", r.error}, {"command", cmd}});
+    cmds << "# run " << r.run << " (" << group << ", " << spec.modes[id.mode] << ", seed " << id.seed_index
+         << "): " << r.outcome << (r.error.empty() ? "" : ": " + r.error) << "\n" << cmd << "\n";
   }
   md << "\n## Runs that did not succeed (" << j["failed_runs"].size() << "), each replayed alone by its command\n\n";
   if (!j["failed_runs"].empty()) md << "```sh\n" << cmds.str() << "```\n";
+}
+
+}  // namespace
+
+Summary summarize(const RunContext& ctx, const std::vector<RunRecord>& unsorted, const std::string& dir) {
+  const SweepSpec& spec = *ctx.spec;
+  std::vector<RunRecord> records = unsorted;
+  std::sort(records.begin(), records.end(), [](const RunRecord& a, const RunRecord& b) { return a.run < b.run; });
+  const std::vector<std::vector<std::size_t>> at = valueIndices(spec, ctx.index);
+  std::map<ModeKey, Tally> by_mode;
+  std::map<ValueKey, Tally> by_value;
+  Tally all;
+  for (const RunRecord& r : records) {
+    const RunId id = runId(spec, static_cast<std::size_t>(r.run));
+    const std::string& jump = ctx.index.points[id.point].jump;
+    all.add(r);
+    by_mode[{jump, id.mode}].add(r);
+    for (std::size_t a = 0; a < spec.axes.size(); ++a) by_value[{a, at[id.point][a], jump, id.mode}].add(r);
+  }
+  Summary s;
+  json& j = s.json;
+  j["dir"] = dir;
+  const std::size_t errors = all.outcomes[kOutcomeError], not_planned = all.outcomes[kOutcomeNotPlanned];
+  j["runs"] = {{"total", spec.runs()}, {"finished", records.size()}, {"simulated", all.n}, {"successes", all.k},
+               {"errors", errors}, {"not_planned", not_planned}};
+  std::ostringstream md;
+  md << "# centaur sweep: " << dir << "\n\n"
+     << records.size() << " of " << spec.runs() << " runs finished; " << all.n << " simulated to their end, " << errors
+     << " failed (error), " << not_planned
+     << " not simulated because their grid point's plan did not converge. Spec: sweep.yaml. Rates: successes / runs "
+        "simulated, with Wilson 95 % score intervals.\n\n";
+  modesSection(spec, by_mode, j, md);
+  axesSection(spec, by_value, j, md);
+  plansSection(ctx, j, md);
+  failuresSection(ctx, records, j, md);
   for (const auto& pair : spec.heatmaps) s.heatmaps.push_back(makeHeatmap(ctx, records, at, pair));
   s.markdown = md.str();
   return s;
