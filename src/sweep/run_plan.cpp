@@ -5,6 +5,7 @@
 
 #include "common/number_text.hpp"
 #include "sweep/spec_check.hpp"
+#include "sweep/yaml_values.hpp"
 
 namespace centaur::sweep {
 
@@ -77,13 +78,6 @@ std::vector<double> draw(const Distribution& d, Stream& s) {
   return v;
 }
 
-std::string valueText(const std::vector<double>& v) {
-  if (v.size() == 1) return exactNumber(v.front());
-  std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + exactNumber(v[i]);
-  return s + "]";
-}
-
 }  // namespace
 
 RunId runId(const SweepSpec& spec, std::size_t run) {
@@ -130,7 +124,7 @@ std::vector<std::string> runOverrides(const SweepSpec& spec, std::size_t point, 
   for (const auto& [k, v] : spec.simulation_set) out.push_back(k + "=" + v);
   const std::uint64_t seed64 = runSeed(spec, point, seed_index);
   const std::vector<std::vector<double>> sample = samplePerturbation(spec, seed64);
-  for (std::size_t i = 0; i < spec.perturb.size(); ++i) out.push_back(spec.perturb[i].key + "=" + valueText(sample[i]));
+  for (std::size_t i = 0; i < spec.perturb.size(); ++i) out.push_back(spec.perturb[i].key + "=" + numbersText(sample[i]));
   out.push_back("sensors.seed=" + std::to_string(sensorSeed(seed64)));
   return out;
 }

@@ -8,6 +8,7 @@
 #include "planner/jump_config.hpp"
 #include "sim/scenario.hpp"
 #include "sim/sim_config.hpp"
+#include "sweep/yaml_values.hpp"
 
 namespace centaur::sweep {
 
@@ -29,13 +30,6 @@ std::vector<std::string> assignments(const std::map<std::string, std::string>& s
   std::vector<std::string> out;
   for (const auto& [k, v] : set) out.push_back(k + "=" + v);
   return out;
-}
-
-std::string vectorText(const std::vector<double>& v) {
-  if (v.size() == 1) return exactNumber(v.front());
-  std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + exactNumber(v[i]);
-  return s + "]";
 }
 
 const sim::Scenario& scenarioOf(const std::string& jump) {
@@ -157,8 +151,8 @@ void checkSimulation(const SweepSpec& spec) {
       if (d.kind == Distribution::Kind::kChoice) extremes = d.choices;
       for (const auto& v : extremes) {
         std::vector<std::string> o = base;
-        o.push_back(d.key + "=" + vectorText(v));
-        checkRunConfig(spec, jump, o, "simulation.perturb." + d.key, jump + ", value " + vectorText(v) + ": ");
+        o.push_back(d.key + "=" + numbersText(v));
+        checkRunConfig(spec, jump, o, "simulation.perturb." + d.key, jump + ", value " + numbersText(v) + ": ");
       }
     }
   }

@@ -253,26 +253,18 @@ void parseStructure(const YAML::Node& root, SweepSpec& spec) {
 
 // ---- canonical text ----------------------------------------------------------------------------------
 
-std::string list(const std::vector<double>& v, bool as_scalar) {
-  if (as_scalar) return exactNumber(v.front());
-  std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + exactNumber(v[i]);
-  return s + "]";
-}
-
 std::string distributionText(const Distribution& d) {
-  const bool scalar = d.size == 1;
   switch (d.kind) {
     case Distribution::Kind::kUniform:
-      return "{uniform: [" + list(d.a, scalar) + ", " + list(d.b, scalar) + "]}";
+      return "{uniform: [" + numbersText(d.a) + ", " + numbersText(d.b) + "]}";
     case Distribution::Kind::kNormal: {
-      std::string s = "{normal: [" + list(d.a, scalar) + ", " + list(d.b, scalar) + "]";
-      if (!d.clip_lo.empty()) s += ", clip: [" + list(d.clip_lo, scalar) + ", " + list(d.clip_hi, scalar) + "]";
+      std::string s = "{normal: [" + numbersText(d.a) + ", " + numbersText(d.b) + "]";
+      if (!d.clip_lo.empty()) s += ", clip: [" + numbersText(d.clip_lo) + ", " + numbersText(d.clip_hi) + "]";
       return s + "}";
     }
     case Distribution::Kind::kChoice: {
       std::string s = "{choice: [";
-      for (std::size_t i = 0; i < d.choices.size(); ++i) s += (i ? ", " : "") + list(d.choices[i], scalar);
+      for (std::size_t i = 0; i < d.choices.size(); ++i) s += (i ? ", " : "") + numbersText(d.choices[i]);
       return s + "]}";
     }
   }

@@ -56,6 +56,13 @@ std::vector<double> numbers(const YAML::Node& node, int size, bool broadcast, co
   return out;
 }
 
+std::string numbersText(const std::vector<double>& v) {
+  if (v.size() == 1) return exactNumber(v.front());
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + exactNumber(v[i]);
+  return s + "]";
+}
+
 void checkKeyName(const std::string& name, const std::string& file, const std::string& key) {
   bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name.front())) || name.front() == '_');
   for (char c : name) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-');

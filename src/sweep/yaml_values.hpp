@@ -19,6 +19,9 @@ std::string valueText(const YAML::Node& node, const std::string& file, const std
 std::vector<double> numbers(const YAML::Node& node, int size, bool broadcast, const std::string& file,
                             const std::string& key);
 
+/// Exact numbers as YAML text: "0.5" for one number, "[0.5, -1]" for several (a list key's value).
+std::string numbersText(const std::vector<double>& v);
+
 /// Keys of the spec that become HDF5 column names, file names and plot labels: [A-Za-z0-9_.-], starting with a
 /// letter or '_'. InputError(file, key) otherwise.
 void checkKeyName(const std::string& name, const std::string& file, const std::string& key);
