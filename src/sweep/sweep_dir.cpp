@@ -75,6 +75,12 @@ SweepDir::SweepDir(const std::string& dir, const std::string& canonical_spec) : 
     lock_fd_ = -1;
     throw InputError("--out " + dir + ": another sweep is running in this directory (" + lock + " is locked)");
   }
+  // Temporaries of a killed sweep (an output being written, "<name>.tmp.<pid>"): no one else writes here now.
+  for (const fs::path& d : {fs::path(dir), fs::path(dir) / "plans"}) {
+    for (const auto& e : fs::directory_iterator(d, ec)) {
+      if (e.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(e.path(), ec);
+    }
+  }
   if (!resumed_) writeTextFileAtomic(path("sweep.yaml"), canonical_spec);
 }
 

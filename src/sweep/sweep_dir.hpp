@@ -14,8 +14,8 @@ bool checkSweepDir(const std::string& dir, const std::string& canonical_spec);
 
 class SweepDir {
  public:
-  /// checkSweepDir, then creates DIR, takes the lock (InputError if another sweep holds it) and writes
-  /// DIR/sweep.yaml (atomically) if new.
+  /// checkSweepDir, then creates DIR, takes the lock (InputError if another sweep holds it), removes the
+  /// temporaries a killed sweep left ("*.tmp.*") and writes DIR/sweep.yaml (atomically) if new.
   SweepDir(const std::string& dir, const std::string& canonical_spec);
   ~SweepDir();
   SweepDir(const SweepDir&) = delete;
