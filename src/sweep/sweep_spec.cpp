@@ -12,6 +12,7 @@
 #include "common/error.hpp"
 #include "common/number_text.hpp"
 #include "common/yaml_reader.hpp"
+#include "sweep/results_file.hpp"
 #include "sweep/spec_check.hpp"
 #include "sweep/yaml_values.hpp"
 
@@ -309,6 +310,10 @@ SweepSpec parseSweepSpec(const std::string& text, const std::string& label) {
   const YAML::Node root = loadYamlString(text, label);
   if (!root.IsMap()) throw InputError(label, "<root>", "expected a mapping (jumps, modes, seeds, planner, simulation)");
   parseStructure(root, spec);
+  std::set<std::string> columns;  // axis and perturbed keys become results.h5 columns next to the fixed ones
+  for (const auto& c : resultsColumns(spec)) {
+    if (!columns.insert(c.name).second) throw InputError(label, c.name, "is also the name of another results.h5 column");
+  }
   checkPlanner(spec);
   checkSimulation(spec);
   return spec;

@@ -109,6 +109,18 @@ TEST(PrimitiveDatabase, IndexRoundTripAndEveryGroupIsAPrimitive) {
   EXPECT_THROW(readDatabaseIndex(dir.file("squat-jump-0.h5")), InputError);
 }
 
+TEST(PrimitiveDatabase, WithoutAxes) {  // a sweep of the default plans only: one grid point per jump
+  const centaur_test::TempDir dir("db-no-axes");
+  DatabaseIndex index;
+  index.points.push_back({0, "squat-jump-0000", "squat-jump", "solved", {}});
+  const std::string db = writeSample(dir, index);
+  const DatabaseIndex back = readDatabaseIndex(db);
+  EXPECT_TRUE(back.axes.empty());
+  ASSERT_EQ(back.points.size(), 1u);
+  EXPECT_EQ(back.points[0].group, "squat-jump-0000");
+  EXPECT_EQ(select(back, "squat-jump", {}), 0u);
+}
+
 TEST(PrimitiveDatabase, NearestGridPointRule) {
   const DatabaseIndex index = sampleIndex();
   // Exact values select their point; the string axis must match.
