@@ -1,7 +1,8 @@
 // centaur sweep SPEC.yaml --out DIR [--jobs N] [--plan-only] [--json]
 // A sweep (docs/sweeps.md): the primitive database over a grid of planner parameters (DIR/primitives.h5), every
 // grid point simulated with every stabilizer mode under perturbations sampled per run (DIR/results.h5, one row per
-// run), the success statistics (DIR/summary.md, DIR/summary.json) and heatmaps (DIR/heatmap-<x>-<y>.png). On one
+// run), the success statistics (DIR/summary.md, DIR/summary.json), heatmaps (DIR/heatmap-<x>-<y>.png) and the
+// peak-pitch histograms (DIR/peak-pitch.png). On one
 // machine on a pool of threads; under `mpirun -n N` / `srun` across the ranks (rank 0 dispatches and writes).
 // Resumes a killed sweep (same SPEC, same DIR); a different spec on an existing DIR is refused.
 // Exit codes: 0 the sweep finished (outcomes are data); 2 bad spec or DIR (nothing written); 4 a run failed with
@@ -13,7 +14,7 @@
 #include <memory>
 
 #include "cli/command.hpp"
-#include "cli/sweep_heatmap.hpp"
+#include "cli/sweep_plots.hpp"
 #include "common/error.hpp"
 #include "sweep/sweep.hpp"
 
@@ -40,6 +41,11 @@ int runSweepCommand(const SweepArgs& a) {
     const std::string& dat = r.heatmap_data[i];
     const std::string png = dat.substr(0, dat.size() - 4) + ".png";
     plotHeatmap(r.summary.heatmaps[i], dat, png);
+    r.files.push_back(png);
+  }
+  if (!r.pitch_data.empty()) {
+    const std::string png = r.pitch_data.substr(0, r.pitch_data.size() - 4) + ".png";
+    plotPitchHistogram(r.summary.pitch, r.pitch_data, png);
     r.files.push_back(png);
   }
   if (a.options.plan_only) {

@@ -126,6 +126,32 @@ Heatmap makeHeatmap(const RunContext& ctx, const std::vector<RunRecord>& records
   return h;
 }
 
+PitchHistogram makePitchHistogram(const RunContext& ctx, const std::vector<RunRecord>& records) {
+  const SweepSpec& spec = *ctx.spec;
+  PitchHistogram h;
+  double top = 1.0;
+  for (const RunRecord& r : records) {
+    if (r.simulated()) top = std::max(top, r.metric("peak_pitch_deg"));
+  }
+  h.bins = static_cast<std::size_t>(std::ceil(std::min(top, 60.0) / h.bin_deg)) + (top > 60.0 ? 1 : 0);
+  for (const std::string& jump : spec.jumps) {
+    for (const std::string& mode : spec.modes) {
+      h.panels.push_back({jump, mode, std::vector<std::size_t>(h.bins, 0), std::vector<std::size_t>(h.bins, 0)});
+    }
+  }
+  for (const RunRecord& r : records) {
+    if (!r.simulated()) continue;
+    const RunId id = runId(spec, static_cast<std::size_t>(r.run));
+    const std::size_t j = static_cast<std::size_t>(
+        std::find(spec.jumps.begin(), spec.jumps.end(), ctx.index.points[id.point].jump) - spec.jumps.begin());
+    PitchHistogram::Panel& p = h.panels[j * spec.modes.size() + id.mode];
+    const double x = r.metric("peak_pitch_deg");
+    const std::size_t bin = std::min(h.bins - 1, static_cast<std::size_t>(std::max(0.0, x) / h.bin_deg));
+    ++(r.success() ? p.successes : p.others)[bin];
+  }
+  return h;
+}
+
 }  // namespace
 
 Interval wilson(std::size_t k, std::size_t n, double z) {
@@ -249,8 +275,23 @@ Summary summarize(const RunContext& ctx, const std::vector<RunRecord>& unsorted,
   plansSection(ctx, j, md);
   failuresSection(ctx, records, j, md);
   for (const auto& pair : spec.heatmaps) s.heatmaps.push_back(makeHeatmap(ctx, records, at, pair));
+  s.pitch = makePitchHistogram(ctx, records);
   s.markdown = md.str();
   return s;
+}
+
+std::string pitchHistogramData(const PitchHistogram& h) {
+  std::ostringstream s;
+  s << "# centaur sweep: peak pitch of the simulated runs, bins of " << exactNumber(h.bin_deg)
+    << " deg (the last bin holds everything above)\n";
+  for (std::size_t p = 0; p < h.panels.size(); ++p) {
+    if (p > 0) s << "\n\n";
+    s << "# panel " << p << ": " << h.panels[p].jump << " " << h.panels[p].mode << "\n# bin_start_deg successes others\n";
+    for (std::size_t b = 0; b < h.bins; ++b) {
+      s << exactNumber(b * h.bin_deg) << " " << h.panels[p].successes[b] << " " << h.panels[p].others[b] << "\n";
+    }
+  }
+  return s.str();
 }
 
 std::string heatmapData(const Heatmap& h) {

@@ -33,14 +33,31 @@ struct Heatmap {
   std::vector<Panel> panels;
 };
 
+/// The peak pitch of the simulated runs per (jump, mode): counts per bin of `bin_deg` from 0, successes and the
+/// others apart; the last bin also holds everything above it (falls reach 90 deg and more).
+struct PitchHistogram {
+  double bin_deg = 1.0;
+  std::size_t bins = 0;
+  struct Panel {
+    std::string jump, mode;
+    std::vector<std::size_t> successes, others;  ///< per bin
+  };
+  std::vector<Panel> panels;
+};
+
 struct Summary {
   nlohmann::json json;        ///< summary.json
   std::string markdown;       ///< summary.md
   std::vector<Heatmap> heatmaps;
+  PitchHistogram pitch;
 };
 
 /// The summary of `records` (every finished run, any order) of the sweep `ctx` in DIR `dir` (named in the text).
 Summary summarize(const RunContext& ctx, const std::vector<RunRecord>& records, const std::string& dir);
+
+/// The histogram's data as text for gnuplot: one block per panel (two blank lines apart), lines "bin_start
+/// successes others".
+std::string pitchHistogramData(const PitchHistogram& h);
 
 /// A heatmap's data as text for gnuplot: one block per panel (separated by two blank lines, gnuplot's `index`),
 /// lines "ix iy rate n k" with rate NaN for a cell without simulated runs.

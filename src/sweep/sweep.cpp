@@ -127,6 +127,9 @@ SweepReport runAndSummarize(Prepared& p, const MpiSession* mpi, int threads, Clo
     report.heatmap_data.push_back(dat);
     report.files.push_back(dat);
   }
+  report.pitch_data = p.dir->path("peak-pitch.dat");
+  writeTextFileAtomic(report.pitch_data, pitchHistogramData(report.summary.pitch));
+  report.files.push_back(report.pitch_data);
   for (const RunRecord& r : records) {
     if (r.outcome == kOutcomeError) report.exit_code = kExitRuntime;
   }

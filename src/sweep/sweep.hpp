@@ -7,7 +7,8 @@
 //   3. read the journal of finished runs, rebuild DIR/results.h5 from it, and run the others: on a pool of threads,
 //      and under MPI on every rank (rank 0 dispatches dynamically and is the only writer); every batch of records
 //      is appended to the journal (fdatasync) and to results.h5 (flushed) as it arrives;
-//   4. DIR/summary.json, DIR/summary.md and the heatmaps' data (DIR/heatmap-<x>-<y>.dat; the CLI draws them).
+//   4. DIR/summary.json, DIR/summary.md, the data of the heatmaps (DIR/heatmap-<x>-<y>.dat) and of the peak-pitch
+//      histograms (DIR/peak-pitch.dat); the CLI draws them.
 // Under MPI (the process was started by mpirun/srun) every rank calls runSweep: rank 0 reads the spec and writes
 // DIR; the other ranks receive the spec and the plans from it (no shared file system needed).
 #include <string>
@@ -38,6 +39,7 @@ struct SweepReport {
   std::vector<std::string> files;  ///< written (the heatmap PNGs are added by the CLI)
   Summary summary;
   std::vector<std::string> heatmap_data;   ///< DIR/heatmap-<x>-<y>.dat, one per summary.heatmaps entry
+  std::string pitch_data;                  ///< DIR/peak-pitch.dat (summary.pitch)
 };
 
 /// Runs the sweep; see the header comment. Throws InputError (bad spec or DIR) and RuntimeError (I/O, MPI).
