@@ -10,7 +10,10 @@ CENTAUR = $(BUILD)/src/cli/centaur
 DEBS = cmake make g++ pkg-config libeigen3-dev coinor-libipopt-dev libopenblas0-pthread \
        libmujoco-dev libqhull-dev libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev \
        libhdf5-dev libcli11-dev nlohmann-json3-dev libosmesa6-dev libstb-dev ffmpeg gnuplot-nox \
-       libopenmpi-dev openmpi-bin python3-h5py
+       libopenmpi-dev openmpi-bin python3-h5py cyclonedds-dev cyclonedds-tools
+# The HTML report (docs/report.md): chromium for its browser tests; Node.js + npm bundle its viewer at build time
+# (a node and npm already on PATH will do, e.g. a newer Node.js; otherwise Debian's).
+DEBS += chromium $(if $(shell command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1 && echo y),,nodejs npm)
 
 .PHONY: all deps configure build demo test bench clean
 
@@ -65,6 +68,9 @@ demo: build
 	@echo "  compare/compare.md                 both jumps x four stabilizer modes: outcome, pitch, torque (docs/validation.md)"
 	@echo "  compare/compare-pitch.png          IMU pitch over time, one panel per jump (like the paper's Fig. 4)"
 	@echo "  compare/compare.json, compare-pitch.csv, <jump>-<mode>.h5   the same table, the plotted data, the logs"
+	@echo "  compare/report.html                every run replayed in 3D with its plan, synced plots (docs/report.md)"
+	@echo
+	@echo "Open in a browser (works offline, no server): $(abspath $(OUT))/compare/report.html"
 
 clean:
 	rm -rf $(BUILD)

@@ -4,8 +4,8 @@
 // when the jump scenarios take a `flywheel` option, the arm-flywheel trajectory (DIR/arm-flywheel.h5, unless
 // --flywheel is given); simulates every (jump, stabilizer mode) pair in-process on a thread pool
 // (DIR/<jump>-<mode>.h5, each with its effective configuration DIR/<jump>-<mode>.config.yaml); writes
-// DIR/compare.md, DIR/compare.json, DIR/compare-pitch.csv and DIR/compare-pitch.png (IMU pitch over time, one
-// panel per jump).
+// DIR/compare.md, DIR/compare.json, DIR/compare-pitch.csv, DIR/compare-pitch.png (IMU pitch over time, one
+// panel per jump) and DIR/report.html (every run replayed in 3D with a run selector, docs/report.md).
 // Exit codes: 0 every run completed (a fall is an outcome, not an error); 2 bad input (nothing written when
 // detected before the runs); 4 runtime failure (a run, planning or plotting failed; what completed is written).
 #include <nlohmann/json.hpp>
@@ -26,6 +26,7 @@
 #include "data/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
 #include "data/primitive_io.hpp"
+#include "report/report.hpp"
 #include "sim/compare_pitch.hpp"
 #include "sim/compare_report.hpp"
 #include "sim/compare_runner.hpp"
@@ -161,6 +162,19 @@ std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std
   return status;
 }
 
+/// DIR/report.html: every completed run replayed in 3D with its plan as a ghost, a run selector (docs/report.md).
+std::string writeCompareReport(const std::string& dir, const std::vector<report::RunSource>& runs) {
+  const std::string path = (fs::path(dir) / "report.html").string();
+  report::ReportOptions options;
+  options.title = "centaur compare: " + std::to_string(runs.size()) + " run" + (runs.size() == 1 ? "" : "s");
+  try {
+    report::writeReport(path, runs, options);
+  } catch (const InputError& e) {  // our own logs and plans: a runtime failure, not the user's input
+    throw RuntimeError(e.what());
+  }
+  return path;
+}
+
 std::string fmt(const char* format, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, v);
@@ -234,6 +248,7 @@ int runCompare(const CompareArgs& a) {
   bool bad_input = false, failed = false;
   std::vector<std::string> names;
   std::vector<sim::PitchSeries> series;
+  std::vector<report::RunSource> report_runs;
   std::vector<PitchPanel> panels;
   for (const auto& jump : a.jumps) panels.push_back({jump, {}});
   for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -251,6 +266,8 @@ int runCompare(const CompareArgs& a) {
       throw RuntimeError(e.what());
     }
     names.push_back(runs[i].label);
+    report_runs.push_back({pairs[i].jump + " / " + pairs[i].mode + " (" + r.summary.outcome + ")", pairs[i].log,
+                           primitives, pairs[i].jump});
     const std::size_t panel = static_cast<std::size_t>(
         std::find(a.jumps.begin(), a.jumps.end(), pairs[i].jump) - a.jumps.begin());
     if (!series.back().t.empty()) {
@@ -281,6 +298,7 @@ int runCompare(const CompareArgs& a) {
     files.push_back(csv_path);
     plotPitchPanels(csv_path, panels, png_path);
     files.push_back(png_path);
+    files.push_back(writeCompareReport(a.out, report_runs));
   }
   const double total_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 

@@ -50,6 +50,22 @@ herr_t innermostError(unsigned n, const H5E_error2_t* err, void* data) {
 }
 }  // namespace
 
+namespace {
+herr_t truncationError(unsigned /*n*/, const H5E_error2_t* err, void* data) {
+  auto* msg = static_cast<std::string*>(data);
+  if (msg->empty() && err != nullptr && err->desc != nullptr && std::strstr(err->desc, "truncated file") != nullptr) {
+    *msg = err->desc;
+  }
+  return 0;
+}
+}  // namespace
+
+std::string truncationMessage() {
+  std::string msg;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, truncationError, &msg);
+  return msg;
+}
+
 std::string errorStackMessage() {
   std::string msg;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, innermostError, &msg);
@@ -262,7 +278,14 @@ Reader::Reader(std::string path, const std::string& expected) : path_(std::move(
   }
   if (H5Fis_hdf5(path_.c_str()) <= 0) throw InputError(path_ + ": not an HDF5 file (expected " + expected + ")");
   file_ = Id(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!file_.valid()) throw InputError(path_ + ": corrupt HDF5 file, cannot open it" + errorStackMessage());
+  if (!file_.valid()) {
+    const std::string truncated = truncationMessage();
+    if (!truncated.empty()) {
+      throw InputError(path_ + ": truncated HDF5 file, shorter than its header says (an interrupted write or copy?): " +
+                       truncated);
+    }
+    throw InputError(path_ + ": corrupt HDF5 file, cannot open it" + errorStackMessage());
+  }
 }
 
 void Reader::fail(const std::string& key, const std::string& message) const {

@@ -75,6 +75,7 @@ void writeFile(const h5::Writer& w, const std::string& tmp, const SimLogHeader& 
   w.stringListAttribute(file.get(), "contact_bodies", header.contact_bodies);
   w.stringAttribute(file.get(), "config", header.config_yaml, true);
   w.stringAttribute(file.get(), "scenario", header.scenario, true);
+  if (!header.summary_json.empty()) w.stringAttribute(file.get(), "summary", header.summary_json, true);
   w.stringAttribute(file.get(), "format", kSimLogFormat, true);
   w.stringAttribute(file.get(), "units", "SI: s, m, rad, N, N m; quaternions w,x,y,z; see each dataset's `units`",
                     true);
@@ -118,6 +119,7 @@ SimLogFile::SimLogFile(const std::string& path) : impl_(std::make_unique<Impl>(p
   header_.contact_bodies = r.textList(f, "contact_bodies", "contact_bodies");
   header_.config_yaml = r.text(f, "config", "config");
   header_.scenario = r.text(f, "scenario", "scenario");
+  if (r.hasAttribute(f, "summary")) header_.summary_json = r.text(f, "summary", "summary");
   const std::vector<hsize_t> t_dims = r.shape(f, "t", "t");
   if (t_dims.size() != 1) r.fail("t", "dataset has shape " + h5::shapeText(t_dims) + ", expected (N)");
   header_.samples = static_cast<std::size_t>(t_dims[0]);
