@@ -2,7 +2,8 @@
 // Warm starts from a neighbouring primitive (`centaur plan ... --warm-start F.h5[:group]`): the knots of a
 // primitive map back to the decision vector exactly, a primitive of another horizon is refused with a message
 // naming its source, and a squat jump warm-started from the plan for a target 5 cm lower converges to the
-// optimum of the cold solve (objective within 1e-6 relative; Ipopt within 1e-5) in less than half the iterations.
+// optimum of the cold solve (objective within 1e-6 relative) in less than half the iterations (the riccati backend;
+// Ipopt's warm start is the same code path up to the options, measured in docs/planner.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,23 +45,20 @@ TEST(WarmStart, KnotsMapBackToTheDecisionVectorAndOtherHorizonsAreRefused) {
 }
 
 TEST(WarmStart, SquatJumpFromANeighbourTargetReachesTheColdOptimum) {
-  for (const std::string backend : {"riccati", "ipopt"}) {
-    const JumpProblem neighbour(loadJumpConfig("squat-jump", "", withBackend({"target.height=0.87"}, backend)));
-    const JumpProblem p(loadJumpConfig("squat-jump", "", withBackend({"target.height=0.92"}, backend)));
-    const SolveResult rn = neighbour.solve(false);
-    ASSERT_TRUE(rn.info.solved()) << backend;
-    const SolveResult cold = p.solve(false);
-    const Eigen::VectorXd x0 = p.decisionVector(neighbour.toPrimitive(rn), "neighbour");
-    const SolveResult warm = p.solve(false, &x0);
-    ASSERT_TRUE(cold.info.solved()) << backend;
-    ASSERT_TRUE(warm.info.solved()) << backend;
-    // Ipopt stops elsewhere in the squat jump's flat valley (docs/planner.md): 4e-6 relative from its cold optimum.
-    const double tol = backend == "riccati" ? 1e-6 : 1e-5;
-    EXPECT_LT(std::abs(warm.info.cost - cold.info.cost) / std::abs(cold.info.cost), tol)
-        << backend << ": warm " << warm.info.cost << " cold " << cold.info.cost;
-    EXPECT_LT(warm.info.iterations, cold.info.iterations / 2) << backend;
-    EXPECT_LT(warm.info.max_constraint_violation, p.config().solver.constr_viol_tol) << backend;
-    std::printf("%s: cold %d iterations %.3f s, warm %d iterations %.3f s\n", backend.c_str(), cold.info.iterations,
-                cold.info.solve_time_s, warm.info.iterations, warm.info.solve_time_s);
-  }
+  const std::string backend = "riccati";
+  const JumpProblem neighbour(loadJumpConfig("squat-jump", "", withBackend({"target.height=0.87"}, backend)));
+  const JumpProblem p(loadJumpConfig("squat-jump", "", withBackend({"target.height=0.92"}, backend)));
+  const SolveResult rn = neighbour.solve(false);
+  ASSERT_TRUE(rn.info.solved());
+  const SolveResult cold = p.solve(false);
+  const Eigen::VectorXd x0 = p.decisionVector(neighbour.toPrimitive(rn), "neighbour");
+  const SolveResult warm = p.solve(false, &x0);
+  ASSERT_TRUE(cold.info.solved());
+  ASSERT_TRUE(warm.info.solved());
+  EXPECT_LT(std::abs(warm.info.cost - cold.info.cost) / std::abs(cold.info.cost), 1e-6)
+      << "warm " << warm.info.cost << " cold " << cold.info.cost;
+  EXPECT_LT(warm.info.max_constraint_violation, p.config().solver.constr_viol_tol);
+  EXPECT_LT(warm.info.iterations, cold.info.iterations / 2);
+  std::printf("%s: cold %d iterations %.3f s, warm %d iterations %.3f s\n", backend.c_str(), cold.info.iterations,
+              cold.info.solve_time_s, warm.info.iterations, warm.info.solve_time_s);
 }
