@@ -41,9 +41,10 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
                     stabilizerDefaultsYaml();
   s.defaults_yaml = toYamlString(mergeYaml(loadYamlString(s.defaults_yaml, name), loadYamlString(extra_defaults, name)));
   s.options = {{"primitive", "primitive database (HDF5) holding the group '" + name + "' (default: plan it now)",
-                "", {}, false},
+                "", {}, false, true},
                {"stabilizer", "upper-body stabilizer", "none", {"none", "raibert", "angmom", "ocp"}, false},
-               {"flywheel", "arm-flywheel plan (HDF5) for --stabilizer ocp (default: plan it now)", "", {}, false}};
+               {"flywheel", "arm-flywheel plan (HDF5) for --stabilizer ocp (default: plan it now)", "", {}, false,
+                true}};
   s.make_controller = [name](ScenarioContext& ctx) -> std::unique_ptr<Controller> {
     JumpControllerParams params;
     params.read(ctx.controller_config);
