@@ -9,7 +9,11 @@ CENTAUR = $(BUILD)/src/cli/centaur
 # Every Debian package the project needs (build, run, render, plot).
 DEBS = cmake make g++ pkg-config libeigen3-dev coinor-libipopt-dev libopenblas0-pthread \
        libmujoco-dev libqhull-dev libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev \
-       libhdf5-dev libcli11-dev nlohmann-json3-dev libosmesa6-dev libstb-dev ffmpeg gnuplot-nox
+       libhdf5-dev libcli11-dev nlohmann-json3-dev libosmesa6-dev libstb-dev ffmpeg gnuplot-nox \
+       cyclonedds-dev cyclonedds-tools
+# The HTML report (docs/report.md): chromium for its browser tests; Node.js + npm bundle its viewer at build time
+# (a node and npm already on PATH will do, e.g. a newer Node.js; otherwise Debian's).
+DEBS += chromium $(if $(shell command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1 && echo y),,nodejs npm)
 
 # Only for `make fuzz` (coverage-guided fuzzing with libFuzzer, fuzz/README.md).
 FUZZ_DEBS = clang-14 libclang-rt-14-dev llvm-14
@@ -77,6 +81,9 @@ demo: build
 	@echo "  compare/compare.md                 both jumps x four stabilizer modes: outcome, pitch, torque (docs/validation.md)"
 	@echo "  compare/compare-pitch.png          IMU pitch over time, one panel per jump (like the paper's Fig. 4)"
 	@echo "  compare/compare.json, compare-pitch.csv, <jump>-<mode>.h5   the same table, the plotted data, the logs"
+	@echo "  compare/report.html                every run replayed in 3D with its plan, synced plots (docs/report.md)"
+	@echo
+	@echo "Open in a browser (works offline, no server): $(abspath $(OUT))/compare/report.html"
 
 # libFuzzer targets in their own build directory (clang-14, -fsanitize=fuzzer,address,undefined), each run for
 # FUZZ_TIME seconds from the committed corpus (fuzz/corpus/<target>); findings go to $(FUZZ_BUILD)/findings/.

@@ -9,6 +9,7 @@
 // The closed-loop real-time factor of `simulate <jump> --stabilizer <mode>` (physics, impedance and the 1 kHz
 // whole-body tick; outputs off), each run alone (one at a time), the (jump, mode) pairs interleaved N times so that
 // a change of the machine's speed spreads over all of them; median, min and max per pair.
+// centaur bench middleware [--primitives P.h5] [--json]: the nodes over loopback DDS (cli/bench_middleware.hpp).
 // (Timings are measured, never asserted in tests; record them in docs/benchmarks.md.)
 #include <nlohmann/json.hpp>
 
@@ -18,6 +19,7 @@
 #include <cstdio>
 #include <ctime>
 
+#include "cli/bench_middleware.hpp"
 #include "cli/command.hpp"
 #include "common/error.hpp"
 #include "common/stats.hpp"
@@ -236,25 +238,27 @@ int runBench(const BenchArgs& a) {
       }
     }
   }
+  if (a.target == "middleware") out = benchMiddleware(a.primitives);
   if (a.json) printJsonLine(out);
   return kExitOk;
 }
 
 const Registrar kBench{{"bench",
                         "Measure performance (planner: cold solves of both jumps; tick: whole-body controller; "
-                        "jump: closed-loop real-time factor of the simulated jumps)",
+                        "jump: closed-loop real-time factor of the simulated jumps; middleware: the nodes over DDS)",
                         [](CLI::App& sub) {
                           auto a = std::make_shared<BenchArgs>();
-                          sub.add_option("target", a->target, "what to measure: planner, tick, jump")
+                          sub.add_option("target", a->target, "what to measure: planner, tick, jump, middleware")
                               ->required()
-                              ->check(CLI::IsMember({"planner", "tick", "jump"}));
+                              ->check(CLI::IsMember({"planner", "tick", "jump", "middleware"}));
                           sub.add_option("--ticks", a->ticks, "tick: control periods timed (1 ms each)")
                               ->check(CLI::Range(10, 1000000));
                           sub.add_option("--stack", a->stack, "tick: stack YAML (default config/stack_stand.yaml)");
                           sub.add_option("--repeat", a->repeat,
                                          "planner: cold runs per case; jump: runs per (jump, mode); median reported")
                               ->check(CLI::Range(1, 100));
-                          sub.add_option("--primitives", a->primitives, "jump: primitive file with the jumps")
+                          sub.add_option("--primitives", a->primitives,
+                                         "jump, middleware: primitive file with the jumps")
                               ->check(CLI::ExistingFile);
                           sub.add_option("--flywheel", a->flywheel, "jump: arm-flywheel file (mode ocp)")
                               ->check(CLI::ExistingFile);

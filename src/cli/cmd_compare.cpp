@@ -4,8 +4,8 @@
 // when the jump scenarios take a `flywheel` option, the arm-flywheel trajectory (DIR/arm-flywheel.h5, unless
 // --flywheel is given); simulates every (jump, stabilizer mode) pair in-process on a thread pool
 // (DIR/<jump>-<mode>.h5, each with its effective configuration DIR/<jump>-<mode>.config.yaml); writes
-// DIR/compare.md, DIR/compare.json, DIR/compare-pitch.csv and DIR/compare-pitch.png (IMU pitch over time, one
-// panel per jump).
+// DIR/compare.md, DIR/compare.json, DIR/compare-pitch.csv, DIR/compare-pitch.png (IMU pitch over time, one
+// panel per jump) and DIR/report.html (every run replayed in 3D with a run selector, docs/report.md).
 // Exit codes: 0 every run completed (a fall is an outcome, not an error); 2 bad input (nothing written when
 // detected before the runs); 4 runtime failure (a run, planning or plotting failed; what completed is written).
 #include <nlohmann/json.hpp>
@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <set>
 
@@ -27,6 +28,7 @@
 #include "data/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
 #include "data/primitive_io.hpp"
+#include "report/report.hpp"
 #include "sim/compare_pitch.hpp"
 #include "sim/compare_report.hpp"
 #include "sim/compare_runner.hpp"
@@ -162,6 +164,20 @@ std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std
   return status;
 }
 
+/// DIR/report.html (written to `path`, in the staging directory): every completed run replayed in 3D with its
+/// plan as a ghost, a run selector (docs/report.md). `shown`: the staged inputs under their final names.
+void writeCompareReport(const std::string& path, const std::vector<report::RunSource>& runs,
+                        const std::map<std::string, std::string>& shown) {
+  report::ReportOptions options;
+  options.title = "centaur compare: " + std::to_string(runs.size()) + " run" + (runs.size() == 1 ? "" : "s");
+  options.shown_paths = shown;
+  try {
+    report::writeReport(path, runs, options);
+  } catch (const InputError& e) {  // our own logs and plans: a runtime failure, not the user's input
+    throw RuntimeError(e.what());
+  }
+}
+
 std::string fmt(const char* format, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, v);
@@ -170,7 +186,7 @@ std::string fmt(const char* format, double v) {
 
 /// Every file compare will write into DIR, for guardOutputs().
 std::vector<NamedPath> compareOutputs(const CompareArgs& a, bool flywheel) {
-  std::vector<std::string> names{"compare.md", "compare.json", "compare-pitch.csv", "compare-pitch.png"};
+  std::vector<std::string> names{"compare.md", "compare.json", "compare-pitch.csv", "compare-pitch.png", "report.html"};
   if (a.primitives.empty()) {
     names.push_back("primitives.h5");
     for (const auto& jump : a.jumps) names.push_back("primitives." + jump + ".yaml");
@@ -259,6 +275,7 @@ int runCompare(const CompareArgs& a) {
   bool bad_input = false, failed = false;
   std::vector<std::string> names;
   std::vector<sim::PitchSeries> series;
+  std::vector<report::RunSource> report_runs;
   std::vector<PitchPanel> panels;
   for (const auto& jump : a.jumps) panels.push_back({jump, {}});
   for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -276,6 +293,8 @@ int runCompare(const CompareArgs& a) {
       throw RuntimeError(e.what());
     }
     names.push_back(runs[i].label);
+    report_runs.push_back({pairs[i].jump + " / " + pairs[i].mode + " (" + r.summary.outcome + ")", pairs[i].log,
+                           primitives, pairs[i].jump});
     const std::size_t panel = static_cast<std::size_t>(
         std::find(a.jumps.begin(), a.jumps.end(), pairs[i].jump) - a.jumps.begin());
     if (!series.back().t.empty()) {
@@ -312,6 +331,14 @@ int runCompare(const CompareArgs& a) {
     files.push_back(csv_path);
     plotPitchPanels(csv_path, panels, png_path);
     files.push_back(png_path);
+    std::map<std::string, std::string> shown;
+    for (const report::RunSource& r : report_runs) {
+      for (const std::string& p : {r.log_path, r.primitive_path}) shown[p] = finalPath(p);
+    }
+    if (!a.primitives.empty()) shown.erase(a.primitives);  // the user's file, not staged
+    const std::string report_path = staged.path("report.html");
+    writeCompareReport(report_path, report_runs, shown);
+    files.push_back(report_path);
   }
   staged.commit();
   for (auto& f : files) f = finalPath(f);

@@ -30,18 +30,8 @@ struct SimulateArgs {
 };
 
 nlohmann::json toJson(const sim::RunSummary& s, const std::string& scenario) {
-  nlohmann::json j;
+  nlohmann::json j = sim::summaryJson(s);  // outcome, metrics, counts, the scenario's numbers
   j["scenario"] = scenario;
-  j["outcome"] = s.outcome;
-  j["duration_s"] = s.duration_s;
-  j["fall_time_s"] = s.fall_time_s >= 0.0 ? nlohmann::json(s.fall_time_s) : nlohmann::json(nullptr);
-  j["pelvis_drift_m"] = s.pelvis_drift_m;
-  j["pelvis_drift_xy_m"] = s.pelvis_drift_xy_m;
-  j["final_pelvis_height_m"] = s.final_pelvis_height_m;
-  j["peak_pitch_deg"] = s.peak_pitch_deg;
-  j["peak_roll_deg"] = s.peak_roll_deg;
-  j["max_joint_limit_violation"] = s.max_joint_limit_violation;
-  j["max_torque_ratio"] = s.max_torque_ratio;
   j["real_time_factor"] = s.real_time_factor;
   j["wall_time_s"] = s.wall_time_s;
   j["period_time_us_median"] = s.period_time_us_median;
@@ -50,11 +40,8 @@ nlohmann::json toJson(const sim::RunSummary& s, const std::string& scenario) {
   j["control_period_us"] = s.control_period_us;
   j["ticks_over_period"] = s.ticks_over_period;
   j["tick_over_budget"] = s.tickOverBudget();
-  j["control_periods"] = s.control_periods;
-  j["physics_steps"] = s.physics_steps;
   j["video_frames"] = s.video_frames;
   j["files"] = s.files;
-  for (const auto& [name, value] : s.extra) j[name] = value;  // scenario-specific numbers
   return j;
 }
 

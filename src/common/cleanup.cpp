@@ -114,7 +114,7 @@ void sweepAll() {
   for (int pass = 0; pass < 4; ++pass) sweep(kDirectory);  // nested directories: innermost first
 }
 
-extern "C" void onSignal(int sig) {
+extern "C" void centaurCleanupOnSignal(int sig) {
   const int saved_errno = errno;
   g_dying.store(true);
   sweepAll();
@@ -126,7 +126,7 @@ extern "C" void onSignal(int sig) {
   ::raise(sig);  // default action: the process ends with the signal, as without the handler
 }
 
-extern "C" void onExit() { runNow(); }
+extern "C" void centaurCleanupOnExit() { runNow(); }
 
 }  // namespace
 
@@ -179,12 +179,12 @@ void install() {
       struct sigaction old {};
       if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;  // keep an ignored signal ignored
       struct sigaction sa {};
-      sa.sa_handler = onSignal;
+      sa.sa_handler = centaurCleanupOnSignal;
       sigemptyset(&sa.sa_mask);
       for (int other : kSignals) sigaddset(&sa.sa_mask, other);  // one handler at a time
       ::sigaction(sig, &sa, nullptr);
     }
-    std::atexit(onExit);
+    std::atexit(centaurCleanupOnExit);
   });
 }
 

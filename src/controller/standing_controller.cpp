@@ -96,12 +96,14 @@ StandingController::StandingController(const std::string& mjcf_path, const Stand
   imu_q_base_ = (w_q_imu.conjugate() * w_q_base).normalized();
   kp_.setZero(n_);
   kd_.setZero(n_);
+  good_tau_ff_.setZero(n_);
   const auto& names = model_->jointNames();
   for (int i = 0; i < n_; ++i) {
     const JointGains g = gainsFor(names[static_cast<std::size_t>(i)], params_);
     kp_[i] = g.kp;
     kd_[i] = g.kd;
   }
+  kd_safe_ = 3.0 * kd_;  // as the whole-body controller's default safe_kd_scale
   if (params_.use_base_estimator) {
     BaseEstimatorParams ep;
     ep.wheel_radius = params_.wheel_radius;
@@ -171,15 +173,55 @@ void StandingController::computeFeedforward(const RobotState& state, JointComman
 }
 
 void StandingController::tick(const RobotState& state, JointCommand& command) noexcept {
+  const bool finite = state.q.allFinite() && state.qd.allFinite() && state.tau.allFinite() &&
+                      state.imu_quat.coeffs().allFinite() && state.imu_omega.allFinite() && state.imu_acc.allFinite();
+  if (!finite && !safe_) {
+    safe_ = true;
+    safe_reason_ = "invalid_input";
+  }
+  if (safe_requested_ && !safe_) {
+    safe_ = true;
+    safe_reason_ = "requested";
+  }
+  if (safe_ && resume_pending_ && finite && !safe_requested_) {
+    safe_ = false;
+    safe_reason_ = "";
+  }
+  if (!safe_) resume_pending_ = false;  // a resume waits for a valid measurement
   command.q_ref = q_home_;
   command.qd_ref.setZero();
   command.kp = kp_;
+  if (safe_) {
+    command.kd = kd_safe_;
+    command.tau_ff = good_tau_ff_;
+    return;
+  }
   command.kd = kd_;
   if (params_.feedforward) {
     computeFeedforward(state, command);
   } else {
     command.tau_ff.setZero();
   }
+  if (command.tau_ff.allFinite()) good_tau_ff_ = command.tau_ff;
+}
+
+void StandingController::requestSafeMode() noexcept {
+  safe_requested_ = true;
+  resume_pending_ = false;
+}
+
+void StandingController::resume() noexcept {
+  safe_requested_ = false;
+  resume_pending_ = true;
+}
+
+ControllerReport StandingController::report() const noexcept {
+  ControllerReport r;
+  r.phase = "standing";
+  r.safe_mode = safe_;
+  r.safe_reason = safe_reason_;
+  r.stance = {true, true, true, true};
+  return r;
 }
 
 }  // namespace centaur

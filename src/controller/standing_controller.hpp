@@ -69,7 +69,9 @@ void readJointGains(YamlReader& gains, StandingParams& p);
 /// The impedance gains of a joint, by its name (the groups above).
 JointGains gainsFor(const std::string& joint_name, const StandingParams& p);
 
-class StandingController final : public Controller {
+/// Safe mode (latched until resume()): entered on a non-finite measurement or on requestSafeMode(); the command
+/// then holds the home posture with kd x safe_kd_scale (3) and the last good feed-forward.
+class StandingController final : public SupervisedController {
  public:
   /// Loads the controller's own RobotModel from the MJCF (the model never reads the simulator's state).
   StandingController(const std::string& mjcf_path, const StandingParams& params);
@@ -77,6 +79,11 @@ class StandingController final : public Controller {
 
   void start(const RobotState& state, JointCommand& command) override;
   void tick(const RobotState& state, JointCommand& command) noexcept override;
+  void requestSafeMode() noexcept override;
+  void resume() noexcept override;
+  ControllerReport report() const noexcept override;
+  void triggerStart(double /*t*/) noexcept override {}  // no timeline: standing is the whole task
+  const std::vector<std::string>& jointNames() const override { return model_->jointNames(); }
 
   const RobotModel& model() const { return *model_; }
   const StandingParams& params() const { return params_; }
@@ -94,7 +101,9 @@ class StandingController final : public Controller {
   int n_ = 0;
   std::array<int, 4> wheel_ids_{};
   Eigen::Quaterniond imu_q_base_ = Eigen::Quaterniond::Identity();  // imu_R_base
-  Eigen::VectorXd q_home_, kp_, kd_;
+  Eigen::VectorXd q_home_, kp_, kd_, kd_safe_, good_tau_ff_;
+  bool safe_ = false, safe_requested_ = false, resume_pending_ = false;
+  const char* safe_reason_ = "";
   // workspaces
   Eigen::VectorXd q_model_, v_model_, g_;
   std::array<RowMatrixXd, 4> J_;

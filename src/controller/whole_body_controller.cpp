@@ -20,6 +20,7 @@ const char* toString(WholeBodyStatus status) {
     case WholeBodyStatus::kOk: return "ok";
     case WholeBodyStatus::kSafeInvalidInput: return "safe_invalid_input";
     case WholeBodyStatus::kSafeQpFailed: return "safe_qp_failed";
+    case WholeBodyStatus::kSafeRequested: return "safe_requested";
   }
   return "unknown";
 }
@@ -204,6 +205,10 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
   if (!finiteInput(state)) {
     ++counters_.invalid_inputs;
     enterSafe(WholeBodyStatus::kSafeInvalidInput, command);
+    return;
+  }
+  if (safe_requested_) {
+    enterSafe(WholeBodyStatus::kSafeRequested, command);
     return;
   }
   if (inSafeMode() && !resume_pending_) {

@@ -68,6 +68,7 @@ enum class WholeBodyStatus {
   kOk,                ///< nominal tick
   kSafeInvalidInput,  ///< safe mode: NaN/Inf in the state or the estimate
   kSafeQpFailed,      ///< safe mode: the HQP failed (or returned a non-finite solution)
+  kSafeRequested,     ///< safe mode: asked for from outside (requestSafeMode(), e.g. the robot's state went stale)
 };
 const char* toString(WholeBodyStatus status);
 
@@ -114,11 +115,22 @@ class WholeBodyController final : public Controller {
   /// detector (a wheel planned in flight is not pushed on even if the detector still sees it in contact).
   void setStanceMask(const std::array<bool, 4>& allowed) noexcept { stance_mask_ = allowed; }
   /// Leave safe mode at the next tick with a valid input: q_ref := measured q, feet held where they are.
-  void resume() { resume_pending_ = true; }
+  void resume() noexcept {
+    resume_pending_ = true;
+    safe_requested_ = false;
+  }
+  /// Enter safe mode at the next tick (kSafeRequested), latched until resume().
+  void requestSafeMode() noexcept {
+    safe_requested_ = true;
+    resume_pending_ = false;
+  }
 
   // ---- results ----
   WholeBodyStatus status() const { return status_; }
-  bool inSafeMode() const { return status_ == WholeBodyStatus::kSafeInvalidInput || status_ == WholeBodyStatus::kSafeQpFailed; }
+  bool inSafeMode() const {
+    return status_ == WholeBodyStatus::kSafeInvalidInput || status_ == WholeBodyStatus::kSafeQpFailed ||
+           status_ == WholeBodyStatus::kSafeRequested;
+  }
   const WholeBodyCounters& counters() const { return counters_; }
   QpStatus lastQpStatus() const { return qp_status_; }
   /// Wall time of the last tick's HQP update+solve [s] (steady clock), for benchmarks.
@@ -163,6 +175,7 @@ class WholeBodyController final : public Controller {
   Forces F_d_ = Forces::Zero();
   bool default_forces_ = true;
   bool resume_pending_ = false;
+  bool safe_requested_ = false;
   WholeBodyStatus status_ = WholeBodyStatus::kNotStarted;
   WholeBodyCounters counters_;
   QpStatus qp_status_ = QpStatus::kOptimal;

@@ -59,6 +59,22 @@ herr_t innermostError(unsigned n, const H5E_error2_t* err, void* data) {
 }
 }  // namespace
 
+namespace {
+herr_t truncationError(unsigned /*n*/, const H5E_error2_t* err, void* data) {
+  auto* msg = static_cast<std::string*>(data);
+  if (msg->empty() && err != nullptr && err->desc != nullptr && std::strstr(err->desc, "truncated file") != nullptr) {
+    *msg = err->desc;
+  }
+  return 0;
+}
+}  // namespace
+
+std::string truncationMessage() {
+  std::string msg;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, truncationError, &msg);
+  return msg;
+}
+
 std::string errorStackMessage() {
   std::string msg;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, innermostError, &msg);
@@ -332,7 +348,14 @@ Reader::Reader(std::string path, const std::string& expected) : path_(std::move(
     if (fd >= 0) ::close(fd);
   }
   file_ = Id(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!file_.valid()) throw InputError(shown + ": corrupt HDF5 file, cannot open it" + errorStackMessage());
+  if (!file_.valid()) {
+    const std::string truncated = truncationMessage();
+    if (!truncated.empty()) {
+      throw InputError(shown + ": truncated HDF5 file, shorter than its header says (an interrupted write or copy?): " +
+                       truncated);
+    }
+    throw InputError(shown + ": corrupt HDF5 file, cannot open it" + errorStackMessage());
+  }
   path_ = shown;  // messages quote the path as a bounded excerpt
 }
 

@@ -62,6 +62,9 @@ class QuietErrors {
 /// " (HDF5: <innermost message of the error stack>)", or "" when the stack is empty.
 std::string errorStackMessage();
 
+/// HDF5's "truncated file: eof = ..., stored_eof = ..." message if the error stack holds one, else "".
+std::string truncationMessage();
+
 /// "(2, 4, 3)".
 std::string shapeText(const std::vector<hsize_t>& dims);
 

@@ -75,6 +75,7 @@ void writeFile(const h5::Writer& w, const std::string& tmp, const SimLogHeader& 
   w.stringListAttribute(file.get(), "contact_bodies", header.contact_bodies);
   w.stringAttribute(file.get(), "config", header.config_yaml, true);
   w.stringAttribute(file.get(), "scenario", header.scenario, true);
+  if (!header.summary_json.empty()) w.stringAttribute(file.get(), "summary", header.summary_json, true);
   w.stringAttribute(file.get(), "format", kSimLogFormat, true);
   w.stringAttribute(file.get(), "units", "SI: s, m, rad, N, N m; quaternions w,x,y,z; see each dataset's `units`",
                     true);
@@ -133,6 +134,7 @@ void SimLogFile::open() {
   if (header_.contact_bodies.size() > kMaxLogJoints) r.fail("contact_bodies", "holds too many names");
   header_.config_yaml = r.text(f, "config", "config");
   header_.scenario = r.text(f, "scenario", "scenario");
+  if (r.hasAttribute(f, "summary")) header_.summary_json = r.text(f, "summary", "summary");
   header_.samples = static_cast<std::size_t>(r.length(f, "t", "t", 1, kMaxLogSamples));
   for (const LogDataset& d : simLogDatasets()) {
     const std::vector<hsize_t> want = logDatasetDims(d, header_);

@@ -1,7 +1,8 @@
 #pragma once
 // The simulation log format "centaur-sim-log 1" (schema in docs/sim.md): one row per logged control period,
 // one dataset per signal, every dataset with string attributes `units` and `description`; root attributes
-// joint_names, contact_bodies (string lists), config (effective YAML), scenario, format, units.
+// joint_names, contact_bodies (string lists), config (effective YAML), scenario, format, units, and optionally
+// summary (the run's outcome and metrics as one JSON object; logs written before it existed lack it).
 //
 // The dataset table below is the single source of truth for names, shapes and units: the simulator's writer
 // (sim::SimLog) and every reader (compare, report, sweeps) go through it.
@@ -45,6 +46,7 @@ struct SimLogHeader {
   std::vector<std::string> contact_bodies;  ///< c
   std::string config_yaml;                  ///< the effective configuration of the run
   std::string scenario;
+  std::string summary_json;                 ///< the run's outcome and metrics (JSON object); "" = not recorded
   std::size_t samples = 0;                  ///< N
 };
 

@@ -156,7 +156,7 @@ void MujocoRobot::write(const JointCommand& c) {
 void MujocoRobot::sampleMeasurement() {
   head_ = (head_ + 1) % delay_.size();
   RobotState& s = delay_[head_];
-  s.t = d_->time;
+  s.t = secondsFromNanoseconds(nanosecondsFromSeconds(d_->time));  // the robot clock counts nanoseconds
   const SensorNoise& nz = settings_.noise;
   for (Eigen::Index i = 0; i < n_; ++i) {
     s.q[i] = d_->qpos[qpos_adr_[i]];
@@ -215,12 +215,20 @@ void MujocoRobot::physicsStep() {
 }
 
 void MujocoRobot::controlPeriod(Controller& controller, RobotState& state, JointCommand& command) {
-  mj_step1(m_, d_);  // positions/velocities and their sensors at this instant
-  sampleMeasurement();
-  read(state);
+  beginPeriod(state);
   const auto t0 = std::chrono::steady_clock::now();
   controller.tick(state, command);
   last_tick_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  endPeriod(command);
+}
+
+void MujocoRobot::beginPeriod(RobotState& state) {
+  mj_step1(m_, d_);  // positions/velocities and their sensors at this instant
+  sampleMeasurement();
+  read(state);
+}
+
+void MujocoRobot::endPeriod(const JointCommand& command) {
   write(command);
   applyImpedance();
   // The sensors of mj_step2 (the accelerometer: a full post-constraint RNE pass) are read only by the next

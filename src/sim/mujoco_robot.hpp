@@ -77,9 +77,13 @@ class MujocoRobot final : public RobotInterface {
   // ---- loop ----
   /// Back to the keyframe, zero command (all gains zero), time 0, delay line filled with the first sample.
   void reset();
-  /// One control period: measure, controller.tick(state, command), write(command), then
-  /// `control_decimation` physics steps with the impedance law. No allocation.
+  /// One control period: beginPeriod(state), controller.tick(state, command), endPeriod(command). No allocation.
   void controlPeriod(Controller& controller, RobotState& state, JointCommand& command);
+  /// First half of a control period: the positions/velocities of this instant and their sensors, sampled into
+  /// the delay line; `state` receives the (possibly delayed, noisy) measurement the controller sees.
+  void beginPeriod(RobotState& state);
+  /// Second half: write(command), then `control_decimation` physics steps with the impedance law.
+  void endPeriod(const JointCommand& command);
   /// One physics step with the current command (impedance law + mj_step). Measurements are not sampled.
   void physicsStep();
   /// [s] wall time of controller.tick() in the last controlPeriod().

@@ -13,7 +13,7 @@
 #include "sim/jump_observer.hpp"
 #include "sim/scenario.hpp"
 #include "stabilizers/jump_controller.hpp"
-#include "stabilizers/make_stabilizer.hpp"
+#include "stabilizers/online_stage.hpp"
 
 namespace centaur::sim {
 
@@ -32,30 +32,31 @@ data::Primitive loadOrPlan(const std::string& name, const std::string& file) {
   return problem.toPrimitive(result);
 }
 
-Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, const std::string& extra_defaults,
+Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, const std::string& world_defaults,
                       const std::string& help) {
   Scenario s;
   s.name = name;
   s.help = help;
-  s.defaults_yaml = "duration: " + std::to_string(duration) + "\n" + JumpControllerParams::defaultsYaml() +
-                    stabilizerDefaultsYaml();
-  s.defaults_yaml = toYamlString(mergeYaml(loadYamlString(s.defaults_yaml, name), loadYamlString(extra_defaults, name)));
+  s.defaults_yaml = "duration: " + std::to_string(duration) + "\n" + world_defaults;
+  s.defaults_yaml = toYamlString(mergeYaml(loadYamlString(s.defaults_yaml, name),
+                                           loadYamlString(controllerDefaultsYaml(name), name)));
   s.options = {{"primitive", "primitive database (HDF5) holding the group '" + name + "' (default: plan it now)",
                 "", {}, false, true},
                {"stabilizer", "upper-body stabilizer", "none", {"none", "raibert", "angmom", "ocp"}, false},
                {"flywheel", "arm-flywheel plan (HDF5) for --stabilizer ocp (default: plan it now)", "", {}, false,
                 true}};
   s.make_controller = [name](ScenarioContext& ctx) -> std::unique_ptr<Controller> {
-    JumpControllerParams params;
-    params.read(ctx.controller_config);
-    std::unique_ptr<Stabilizer> stabilizer = makeStabilizer(ctx.options.at("stabilizer"), ctx.controller_config,
-                                                           ctx.options.at("flywheel"), defaultArmFlywheel);
-    ctx.controller_config.finish();
-    params.wbc.dt = ctx.robot.controlPeriodSeconds();
-    const data::Primitive primitive = loadOrPlan(name, ctx.options.at("primitive"));
-    auto controller = std::make_unique<JumpController>(ctx.config.robot.model_path, primitive, std::move(stabilizer),
-                                                       params);
-    if (controller->wholeBody().ikModel().jointNames() != ctx.robot.jointNames()) {
+    OnlineStageInputs in;
+    in.model_path = ctx.config.robot.model_path;
+    in.dt = ctx.robot.controlPeriodSeconds();
+    in.stabilizer = ctx.options.at("stabilizer");
+    in.flywheel_file = ctx.options.at("flywheel");
+    in.flywheel_fallback = defaultArmFlywheel;
+    const std::string file = ctx.options.at("primitive");
+    in.primitive = [name, file] { return loadOrPlan(name, file); };
+    auto controller = makeOnlineController(name, ctx.controller_config, in);
+    const auto& jump = static_cast<const JumpController&>(*controller);
+    if (jump.wholeBody().ikModel().jointNames() != ctx.robot.jointNames()) {
       throw InputError(ctx.config.robot.model_path +
                        ": the controller model's joint order differs from the simulator's actuator order");
     }
@@ -75,13 +76,12 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
 
 Scenario squatJumpScenario() {
   // No wall (it is behind the robot for the half-squat jump only); after landing, stand up again.
-  return jumpScenario("squat-jump", JumpKind::kSquat, 5.0,
-                      "world: {wall_x: -20.0}\ncontroller: {recover_time: 1.0, ocp: {blend_time: 0.45}}\n",
+  return jumpScenario("squat-jump", JumpKind::kSquat, 5.0, "world: {wall_x: -20.0}\n",
                       "replay a squat-jump primitive (all four wheels take off and land) with an upper-body stabilizer");
 }
 
 Scenario halfSquatJumpScenario() {
-  return jumpScenario("half-squat-jump", JumpKind::kHalfSquat, 6.5, "controller: {ocp: {blend_time: 0.45}}\n",
+  return jumpScenario("half-squat-jump", JumpKind::kHalfSquat, 6.5, "",
                       "replay a half-squat-jump primitive (rear wheels onto the wall behind) with an upper-body stabilizer");
 }
 

@@ -40,7 +40,8 @@ controller: {}            # the scenario controller's own section (see docs/sim.
 
 std::string defaultModelPath() { return std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml"; }
 
-SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label) {
+SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
+                         const std::vector<std::string>& node_sections) {
   SimConfig c;
   c.effective = effective;
   c.label = label;
@@ -100,12 +101,13 @@ SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label) 
     l.finish();
   }
   r.raw("controller");  // read by the scenario's controller (controllerSection)
+  for (const std::string& section : node_sections) r.raw(section);  // read by the node that added them
   r.finish();
   return c;
 }
 
 SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string& file,
-                        const std::vector<std::string>& overrides) {
+                        const std::vector<std::string>& overrides, const std::vector<std::string>& node_sections) {
   YAML::Node node = loadYamlString(kSimConfigDefaults, "<simulation defaults>");
   if (!scenario_defaults.empty()) node = mergeYaml(node, loadYamlString(scenario_defaults, "<scenario defaults>"));
   std::string label = "<defaults>";
@@ -115,7 +117,7 @@ SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string&
   }
   for (const auto& o : overrides) applyOverride(node, o);
   if (!overrides.empty()) label += (file.empty() ? " with --set" : " (with --set)");
-  return parseSimConfig(node, file.empty() && overrides.empty() ? "<defaults>" : label);
+  return parseSimConfig(node, file.empty() && overrides.empty() ? "<defaults>" : label, node_sections);
 }
 
 YamlReader controllerSection(const SimConfig& config) {

@@ -41,16 +41,18 @@ struct SimConfig {
 
 /// Build the effective configuration: embedded defaults <- `scenario_defaults` (YAML text, e.g. the
 /// scenario's controller section and duration) <- file (if not empty) <- `--set key=value` overrides.
-/// Reads and range-checks every key except `controller` (returned in `controller`, for the scenario).
+/// Reads and range-checks every key except `controller` (returned in `controller`, for the scenario) and the
+/// `node_sections` (e.g. "middleware", "safety" of the robot node, which reads them from `effective`).
 /// Throws InputError naming the file, key and allowed range.
 SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string& file,
-                        const std::vector<std::string>& overrides);
+                        const std::vector<std::string>& overrides, const std::vector<std::string>& node_sections = {});
 
 /// A strict reader of the `controller:` section (prefix "controller"), for the scenario's controller.
 YamlReader controllerSection(const SimConfig& config);
 
 /// Parse the non-controller sections of an already merged node (used by loadSimConfig).
-SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label);
+SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
+                         const std::vector<std::string>& node_sections = {});
 
 /// Default MJCF: <source>/models/centauro/centauro.xml.
 std::string defaultModelPath();

@@ -58,12 +58,14 @@ void SimLog::appendLoop(const MujocoRobot& robot, const RobotState& s, const Joi
   push(imu_acc_, s.imu_acc);
 }
 
-void SimLog::writeHdf5(const std::string& path, const std::string& config_yaml, const std::string& scenario) const {
+void SimLog::writeHdf5(const std::string& path, const std::string& config_yaml, const std::string& scenario,
+                       const std::string& summary_json) const {
   data::SimLogHeader header;
   header.joint_names = joint_names_;
   header.contact_bodies = contact_bodies_;
   header.config_yaml = config_yaml;
   header.scenario = scenario;
+  header.summary_json = summary_json;
   header.samples = t_.size();
   const std::map<std::string, const std::vector<double>*> data = {
       {"t", &t_},

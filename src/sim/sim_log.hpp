@@ -30,7 +30,9 @@ class SimLog {
   const std::vector<std::string>& jointNames() const { return joint_names_; }
 
   /// Write the HDF5 file atomically (temporary file, then rename). Throws RuntimeError on I/O failure.
-  void writeHdf5(const std::string& path, const std::string& config_yaml, const std::string& scenario) const;
+  /// `summary_json`: the run's outcome and metrics (root attribute `summary`; "" = none).
+  void writeHdf5(const std::string& path, const std::string& config_yaml, const std::string& scenario,
+                 const std::string& summary_json = "") const;
 
  private:
   std::vector<std::string> joint_names_, contact_bodies_;

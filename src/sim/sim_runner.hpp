@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "common/output_guard.hpp"
 #include "controller/robot_interface.hpp"
 #include "sim/mujoco_robot.hpp"
@@ -47,6 +49,11 @@ struct RunSummary {
   std::vector<std::string> files;        ///< files written
   std::map<std::string, double> extra;   ///< the scenario observer's numbers (RunObserver::summary)
 };
+
+/// The numbers of a run that depend only on the simulation (outcome, times, drift, pitch, torque ratio, counts and
+/// the scenario observer's numbers; no wall times, no file names): part of `simulate --json`, and recorded in the
+/// log (attribute `summary`) so that identical runs still write identical logs.
+nlohmann::json summaryJson(const RunSummary& summary);
 
 /// Run `controller` on `robot` (already reset) for config.duration seconds. controller.start() is called
 /// first. Throws InputError for bad outputs (e.g. snapshot time beyond the duration) BEFORE running, and

@@ -1,6 +1,8 @@
 #include "stabilizers/jump_controller.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "common/error.hpp"
 #include "common/yaml_reader.hpp"
@@ -10,6 +12,7 @@ namespace centaur {
 std::string JumpControllerParams::defaultsYaml() {
   return R"(controller:
   settle_time: 0.5          # [s] hold the first sample before the primitive starts, [0, 10]
+  start: settle             # settle: the primitive starts settle_time after start | trigger: on a trigger, not earlier
   early_touchdown: 0.08     # [s] contact accepted this long before a planned touch-down, [0, 1]
   touchdown_search_speed: 0.3  # [m/s] late touch-down: the wheel moves on along -n (0: off), [0, 5]
   touchdown_search_max: 0.15   # [m] largest search offset, [0, 0.5]
@@ -23,6 +26,7 @@ std::string JumpControllerParams::defaultsYaml() {
 
 void JumpControllerParams::read(YamlReader& r) {
   r.get("settle_time", settle_time, 0.0, 10.0);
+  r.get("start", start, {"settle", "trigger"});
   r.get("early_touchdown", early_touchdown, 0.0, 1.0);
   r.get("recover_time", recover_time, 0.0, 10.0);
   r.get("touchdown_search_speed", touchdown_search_speed, 0.0, 5.0);
@@ -46,10 +50,12 @@ JumpController::JumpController(const std::string& mjcf_path, const data::Primiti
   vdot_.setZero(wbc_->ikModel().nv());
   replay_.sample(0.0, first_);
   replay_.sample(replay_.duration(), last_);
+  use_trigger_ = params_.start == "trigger";
 }
 
 void JumpController::start(const RobotState& state, JointCommand& command) {
   t0_ = state.t;
+  triggered_ = false;
   t_rel_ = -params_.settle_time;
   replay_.sample(t_rel_, sample_);
   w_search_.setZero();
@@ -61,8 +67,36 @@ void JumpController::start(const RobotState& state, JointCommand& command) {
   stabilizer_->start(wbc_->ikModel().jointNames(), wbc_->homePosture());
 }
 
+double JumpController::primitiveStart() const {
+  if (use_trigger_ && !triggered_) return std::numeric_limits<double>::infinity();
+  return use_trigger_ ? std::max(t_trigger_, t0_ + params_.settle_time) : t0_ + params_.settle_time;
+}
+
+void JumpController::triggerStart(double t) noexcept {
+  if (triggered_ || !std::isfinite(t)) return;
+  triggered_ = true;
+  t_trigger_ = t;
+}
+
+ControllerReport JumpController::report() const noexcept {
+  ControllerReport r;
+  const bool waiting = use_trigger_ && !triggered_;
+  r.phase = waiting                                          ? "waiting"
+            : t_rel_ < 0.0                                   ? "settle"
+            : t_rel_ < replay_.duration()                    ? "primitive"
+            : params_.recover_time > 0.0 &&
+                      t_rel_ < replay_.duration() + params_.recover_time ? "recover"
+                                                             : "end";
+  r.safe_mode = wbc_->inSafeMode();
+  r.safe_reason = r.safe_mode ? toString(wbc_->status()) : "";
+  r.stance = wbc_->stance();
+  return r;
+}
+
 void JumpController::tick(const RobotState& state, JointCommand& command) noexcept {
+  // Time since the primitive's start: after settle_time; with a trigger, not before it (held until then).
   t_rel_ = state.t - t0_ - params_.settle_time;
+  if (use_trigger_) t_rel_ = triggered_ ? std::min(t_rel_, state.t - t_trigger_) : -1e9;
   replay_.sample(t_rel_, sample_);
   const double t_after = t_rel_ - replay_.duration();
   const double dt = wbc_->params().dt;

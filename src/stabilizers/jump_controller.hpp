@@ -45,6 +45,9 @@ struct JumpControllerParams {
   double touchdown_search_speed = 0.3;  ///< [m/s] late touch-down search speed (0: off), [0, 5]
   double touchdown_search_max = 0.15;   ///< [m] largest search offset, [0, 0.5]
   double recover_time = 0.0;      ///< [s] back to the first sample's r_C after the end (0: hold the last), [0, 10]
+  /// When the primitive starts: "settle" = settle_time after start(); "trigger" = at triggerStart(t), but not
+  /// before settle_time (until then the first sample is held).
+  std::string start = "settle";
   bool feedforward_acceleration = true;  ///< pass the planned base acceleration to the force distribution
   WholeBodyParams wbc;            ///< stack_yaml is filled from the stabilizer
   /// The documented defaults of the scenario's `controller:` section (stabilizer sections included).
@@ -53,7 +56,7 @@ struct JumpControllerParams {
   void read(YamlReader& r);
 };
 
-class JumpController final : public Controller {
+class JumpController final : public SupervisedController {
  public:
   /// Builds the whole-body controller with the stabilizer's stack. Throws InputError (bad model, stack, primitive).
   JumpController(const std::string& mjcf_path, const data::Primitive& primitive,
@@ -61,6 +64,12 @@ class JumpController final : public Controller {
 
   void start(const RobotState& state, JointCommand& command) override;
   void tick(const RobotState& state, JointCommand& command) noexcept override;
+  void requestSafeMode() noexcept override { wbc_->requestSafeMode(); }
+  void resume() noexcept override { wbc_->resume(); }
+  /// phase: "waiting" (for the trigger), "settle", "primitive", "recover" or "end".
+  ControllerReport report() const noexcept override;
+  void triggerStart(double t) noexcept override;
+  const std::vector<std::string>& jointNames() const override { return wbc_->ikModel().jointNames(); }
 
   const WholeBodyController& wholeBody() const { return *wbc_; }
   const PrimitiveReplay& replay() const { return replay_; }
@@ -70,8 +79,8 @@ class JumpController final : public Controller {
   const Eigen::Matrix<double, 3, 4>& searchOffsets() const { return w_search_; }
   /// Time since the primitive's start (negative while settling) [s].
   double primitiveTime() const { return t_rel_; }
-  /// Primitive start time (robot time) [s].
-  double primitiveStart() const { return t0_ + params_.settle_time; }
+  /// Primitive start time (robot time) [s]; +inf while waiting for the trigger.
+  double primitiveStart() const;
 
  private:
   JumpControllerParams params_;
@@ -82,7 +91,8 @@ class JumpController final : public Controller {
   Eigen::VectorXd vdot_;
   Eigen::Matrix<double, 3, 4> w_search_ = Eigen::Matrix<double, 3, 4>::Zero(), w_search_end_ = w_search_;
   bool end_latched_ = false;
-  double t0_ = 0.0, t_rel_ = 0.0;
+  bool use_trigger_ = false, triggered_ = false;
+  double t0_ = 0.0, t_rel_ = 0.0, t_trigger_ = 0.0;
 };
 
 }  // namespace centaur
