@@ -88,6 +88,27 @@ void BM_QpWarm(benchmark::State& state) {
 }
 BENCHMARK(BM_QpWarm)->Unit(benchmark::kMicrosecond);
 
+// The same constraints with a singular H (rank 30 of 45, no regularisation): the proximal-point iterations
+// (docs/qp.md), which the controller never needs (its Hessians are regularised): what a singular H costs.
+void BM_QpSingularCold(benchmark::State& state) {
+  const int n = 45, m_eq = 30, m_in = 90, rank = 30;
+  Problem p = makeProblem(n, m_eq, m_in, 1);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> N(0.0, 1.0);
+  MatrixXd M(rank, n);
+  for (int i = 0; i < M.size(); ++i) M.data()[i] = N(rng);
+  p.H = M.transpose() * M / n;
+  QpSolver s(n, m_eq, m_in);
+  for (auto _ : state) {
+    s.resetWarmStart();
+    const QpStatus st = s.solve(p.H, p.g, p.A, p.b, p.C, p.c_lo, p.c_up, p.x_lo, p.x_up);
+    if (st != QpStatus::kOptimal) state.SkipWithError("QP not optimal");
+  }
+  state.counters["proximal_iterations"] = s.proximalIterations();
+  state.counters["iterations"] = s.iterations();
+}
+BENCHMARK(BM_QpSingularCold)->Unit(benchmark::kMicrosecond);
+
 // 3-level cascade: 45 variables; level 0 has 30 rows (its residuals are 30 equalities below), level 1 six rows,
 // level 2 a 45-row posture plus 6 rows; 90 inequality rows and box bounds at every level.
 struct Cascade {

@@ -1,6 +1,8 @@
 #include "controller/force_distribution.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "common/error.hpp"
 #include "common/yaml_reader.hpp"
@@ -31,7 +33,7 @@ const char* ForceDistributionParams::defaultsYaml() {
   min_normal_force: 0.0    # [N] lower bound of every stance wheel's normal force, [0, 1e4]
   max_normal_force: 1.0e4  # [N] upper bound, [min_normal_force, 1e5]
   tracking_weight: 1.0     # [1/N^2] weight of ||F - F_d||^2, [0, 1e6]
-  regularization: 1.0e-8   # [1/N^2] weight of ||F||^2, [1e-12, 1]
+  regularization: 1.0e-8   # [1/N^2] weight of ||F||^2, [1e-12, 1]; tracking_weight + regularization >= 1e-7 x dynamics_weight
   dynamics_weight: 1.0e4   # [1/N^2] weight of the floating-base rows when they must be relaxed, [1, 1e9]
 )";
 }
@@ -44,6 +46,22 @@ void ForceDistributionParams::read(YamlReader& r) {
   r.get("tracking_weight", tracking_weight, 0.0, 1e6);
   r.get("regularization", regularization, 1e-12, 1.0);
   r.get("dynamics_weight", dynamics_weight, 1.0, 1e9);
+  if (!conditioned()) r.fail("regularization", conditioningRule());
+}
+
+bool ForceDistributionParams::conditioned() const {
+  return tracking_weight + regularization >= kMinRegularisationRatio * dynamics_weight;
+}
+
+std::string ForceDistributionParams::conditioningRule() const {
+  // The relaxed QP's Hessian is (tracking_weight + regularization) I + dynamics_weight J_u J_u': its relative
+  // regularisation must stay in the QP solver's direct, accurate range (docs/qp.md).
+  std::ostringstream msg;
+  msg << "value " << regularization << " too small: tracking_weight + regularization must be >= "
+      << kMinRegularisationRatio << " x dynamics_weight (here: regularization in ["
+      << std::max(1e-12, kMinRegularisationRatio * dynamics_weight - tracking_weight)
+      << ", 1]), or the relaxed QP is too ill-conditioned for the solver (docs/controller.md)";
+  return msg.str();
 }
 
 namespace {
@@ -61,6 +79,7 @@ void ForceDistribution::init(const RobotModel& model, const ForceDistributionPar
         "need 0 <= min_normal_force <= max_normal_force");
   check(p.tracking_weight >= 0.0 && p.regularization > 0.0 && p.dynamics_weight > 0.0,
         "weights: tracking >= 0, regularization > 0, dynamics > 0");
+  check(p.conditioned(), "regularization: " + p.conditioningRule());
   params_ = params;
   nv_ = model.nv();
   n_ = model.numJoints();

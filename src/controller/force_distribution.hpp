@@ -55,7 +55,7 @@ struct ForceDistributionParams {
   double min_normal_force = 0.0; ///< [N] f_min of every stance wheel, [0, 1e4]
   double max_normal_force = 1e4; ///< [N] f_max, [f_min, 1e5]
   double tracking_weight = 1.0;  ///< [1/N^2] w_track, [0, 1e6]
-  double regularization = 1e-8;  ///< [1/N^2] eps (keeps the Hessian positive definite), [1e-12, 1]
+  double regularization = 1e-8;  ///< [1/N^2] eps (keeps the Hessian positive definite), [1e-12, 1], see conditioned()
   double dynamics_weight = 1e4;  ///< [1/N^2] w_dyn of the relaxed problem, [1, 1e9]
   /// Wheel k (0..3): spinning body (material point) and non-spinning centre site (z = axis).
   std::array<std::string, 4> wheel_bodies = {"wheel_1", "wheel_2", "wheel_3", "wheel_4"};
@@ -66,6 +66,10 @@ struct ForceDistributionParams {
   static const char* defaultsYaml();
   /// Read the section's keys (strict: call finish() on the reader afterwards). Throws InputError.
   void read(YamlReader& r);
+  /// tracking_weight + regularization >= kMinRegularisationRatio * dynamics_weight: the relaxed QP's Hessian
+  /// (tracking_weight + regularization) I + dynamics_weight J_u J_u' stays in the QP solver's accurate range.
+  bool conditioned() const;
+  std::string conditioningRule() const;  ///< the rule, for error messages
 };
 
 /// Which wheels touch what: stance flag and unit surface normal (W) per wheel (default: all on flat ground).

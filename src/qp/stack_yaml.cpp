@@ -1,6 +1,10 @@
 #include "qp/stack_yaml.hpp"
 
+#include <algorithm>
+#include <sstream>
 #include <stdexcept>
+
+#include "qp/qp_solver.hpp"
 
 namespace centaur {
 
@@ -49,6 +53,29 @@ void readWeight(YamlReader& r, Task& task) {
   } catch (const YAML::Exception&) {
     r.fail("weight", "expected a number or a list of numbers");
   }
+}
+// The regularisation must dominate the heaviest weighted term enough for the QP solver to stay in its direct,
+// accurate range (kMinRegularisationRatio, docs/qp.md): eps >= ratio * max over terms of scale * largest weight.
+void checkRegularisation(const YamlReader& root, const LoadedStack& out) {
+  double heaviest = 0.0;
+  std::string name;
+  for (const Level& level : out.stack.levels)
+    for (const Term& t : level.terms) {
+      double w = 0.0;
+      for (int r = 0; r < t.size(); ++r) w = std::max(w, t.task->weight()(t.taskRow(r), t.taskRow(r)));
+      if (t.scale * w > heaviest) {
+        heaviest = t.scale * w;
+        name = t.task->name();
+      }
+    }
+  const double eps = out.stack.regularisation;
+  if (eps >= kMinRegularisationRatio * heaviest) return;
+  std::ostringstream msg;
+  msg << "value " << eps << " is too small for the task weights: it must be in [" << kMinRegularisationRatio * heaviest
+      << ", 1], i.e. at least " << kMinRegularisationRatio << " x the largest scale x weight of a task ('" << name
+      << "': " << heaviest << "); below, the QP Hessians are too ill-conditioned for the solver's direct method "
+      << "(docs/qp.md). Raise regularisation or lower the weights";
+  root.fail("regularisation", msg.str());
 }
 }  // namespace
 
@@ -165,6 +192,7 @@ LoadedStack loadStack(const YAML::Node& node, const std::string& file, const Tas
       }
     }
   }
+  checkRegularisation(root, out);
   root.finish();
   return out;
 }

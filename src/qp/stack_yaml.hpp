@@ -6,7 +6,7 @@
 //     - [pelvis]
 //     - [ang_mom, posture]       # soft priority inside a level
 //   constraints: [joint_limits, velocity_limits]   # imposed at every level (optional)
-//   regularisation: 1.0e-6       # eps ||x||^2 at every level (optional, (0, 1])
+//   regularisation: 1.0e-6       # eps ||x||^2 at every level (optional, [1e-7 x max scale x weight, 1])
 //   feet:                        # one mapping per task / constraint named above
 //     type: Cartesian            # a type registered in the TaskRegistry (required)
 //     lambda: 0.5                # gain (optional, [0, 1e6], default: the type's)

@@ -248,6 +248,44 @@ TEST(ForceDistributionParams, DocumentedDefaultsAreTheDefaultsAndRangesAreEnforc
   EXPECT_THROW(b.read(rb), InputError);
 }
 
+TEST_F(ForceDistributionTest, RegularizationKeepsTheRelaxedQpInTheSolversRange) {
+  // The relaxed QP's Hessian is (tracking_weight + regularization) I + dynamics_weight J_u J_u': below
+  // tracking_weight + regularization = 1e-7 dynamics_weight it would leave the QP solver's accurate range, so
+  // such settings are refused (YAML: file and key named; init(): InputError). At the limit, minimum-norm forces
+  // (tracking_weight 0) still give the analytic relaxed answer of InfeasibleDemandIsRelaxedWithinFriction.
+  const YAML::Node bad = YAML::Load("{tracking_weight: 0.0, regularization: 1.0e-8, dynamics_weight: 1.0e4}");
+  YamlReader rb(bad, "cfg.yaml", "force_distribution");
+  ForceDistributionParams b;
+  try {
+    b.read(rb);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cfg.yaml"), std::string::npos) << what;
+    EXPECT_NE(what.find("force_distribution.regularization"), std::string::npos) << what;
+    EXPECT_NE(what.find("0.001"), std::string::npos) << what;  // the smallest allowed value here
+  }
+  ForceDistributionParams p;
+  p.tracking_weight = 0.0;
+  p.regularization = 1e-12;
+  p.dynamics_weight = 1e9;
+  ForceDistribution other;
+  EXPECT_THROW(other.init(*model_, p), InputError);
+  p.dynamics_weight = 1e4;
+  p.regularization = 1e-3;  // = 1e-7 x dynamics_weight: accepted
+  const YAML::Node ok = YAML::Load("{tracking_weight: 0.0, regularization: 1.0e-3, dynamics_weight: 1.0e4}");
+  YamlReader ro(ok, "cfg.yaml", "force_distribution");
+  EXPECT_NO_THROW(b.read(ro));
+  other.init(*model_, p);
+  vdot_[0] = 10.0;
+  WheelContacts c;
+  ASSERT_EQ(other.compute(*model_, vdot_, ForceDistribution::Forces::Zero(), c), Status::kRelaxed);
+  const auto& F = other.forces();
+  const double mu = p.friction, m = model_->totalMass();
+  EXPECT_NEAR(F.row(0).sum(), mu * F.row(2).sum(), 1e-3 * weight_);
+  EXPECT_NEAR(F.row(2).sum(), m * (mu * 10.0 + 9.81) / (1.0 + mu * mu), 0.01 * weight_);
+}
+
 TEST_F(ForceDistributionTest, ComputeNeverAllocates) {
   WheelContacts c, three;
   three.stance[3] = false;

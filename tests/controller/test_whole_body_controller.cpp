@@ -430,3 +430,37 @@ TEST(WholeBodyController, FailedQpEntersSafeModeAndResumeRecovers) {
   EXPECT_EQ(c.lastQpStatus(), QpStatus::kOptimal);
   EXPECT_EQ((cmd.kd - kd_nominal).norm(), 0.0);
 }
+
+TEST(WholeBodyController, QpAnswerFailingItsKktCheckIsNeverUsed) {
+  // A level's QP answer that fails the solver's KKT check (here forced by a tolerance no answer can meet) is a
+  // failed HQP solve: safe mode with the last good command, never the rejected answer; resume() recovers.
+  RobotModel m(kModel);
+  WholeBodyController c(kModel, params());
+  RobotState s = homeState(m);
+  JointCommand cmd;
+  c.start(s, cmd);
+  for (int k = 0; k < 5; ++k) {
+    s.t += 0.001;
+    c.tick(s, cmd);
+  }
+  c.setPostureReference(c.homePosture().array() + 0.1);  // a posture error: the last level's QP has work to do
+  s.t += 0.001;
+  c.tick(s, cmd);
+  ASSERT_EQ(c.status(), WholeBodyStatus::kOk);
+  const Eigen::VectorXd q_good = cmd.q_ref;
+  const int last = c.hqp().numLevels() - 1;
+  c.hqp().levelSolver(last).settings().kkt_tol = 1e-30;
+  s.t += 0.001;
+  c.tick(s, cmd);
+  EXPECT_EQ(c.lastQpStatus(), QpStatus::kInaccurate);
+  EXPECT_EQ(c.status(), WholeBodyStatus::kSafeQpFailed);
+  EXPECT_EQ(c.counters().qp_failures, 1);
+  EXPECT_EQ((cmd.q_ref - q_good).norm(), 0.0);
+  EXPECT_EQ(cmd.qd_ref.norm(), 0.0);
+  c.hqp().levelSolver(last).settings().kkt_tol = centaur::QpSettings().kkt_tol;
+  c.resume();
+  s.t += 0.001;
+  c.tick(s, cmd);
+  EXPECT_EQ(c.status(), WholeBodyStatus::kOk);
+  EXPECT_EQ(c.lastQpStatus(), QpStatus::kOptimal);
+}

@@ -207,6 +207,29 @@ TEST(Hqp, InfeasibleConstraintsAreReportedWithTheLevel) {
   EXPECT_EQ(hqp.solve(x), QpStatus::kInvalidInput);
 }
 
+TEST(Hqp, ALevelThatFailsTheKktCheckIsReportedWithTheLevel) {
+  // A lower level whose QP answer fails the KKT check (a tolerance no answer can meet) is a failure of that
+  // level: the cascade stops there, failedLevel() names it, x holds the level above's solution.
+  std::mt19937 rng(8);
+  auto t0 = randomTask(rng, "t0", 2, 5), t1 = randomTask(rng, "t1", 5, 5);
+  auto box = std::make_shared<LinearConstraint>("box", 5, 1);
+  box->lowerBounds().setConstant(-0.3);  // active at the optimum of level 1: the dual method runs
+  box->upperBounds().setConstant(0.3);
+  HqpSolver hqp(t0 / t1 << box, 5);
+  VectorXd x(5);
+  ASSERT_EQ(hqp.solve(x), QpStatus::kOptimal);
+  const VectorXd good = x;
+  ASSERT_GT(hqp.levelSolver(1).numActive(), 0);
+  hqp.levelSolver(1).settings().kkt_tol = 1e-30;
+  EXPECT_EQ(hqp.solve(x), QpStatus::kInaccurate);
+  EXPECT_EQ(hqp.failedLevel(), 1);
+  EXPECT_EQ((x - hqp.levelSolution(0)).norm(), 0.0);
+  EXPECT_GT((x - good).norm(), 1e-6);  // the level above's solution, not the last good answer
+  hqp.levelSolver(1).settings().kkt_tol = 1e-9;
+  ASSERT_EQ(hqp.solve(x), QpStatus::kOptimal);
+  EXPECT_LT((x - good).norm(), 1e-12);
+}
+
 TEST(Hqp, RedundantLevelsAndFullyDeterminedLevels) {
   // A task repeated at a lower level (all its rows dependent on the level above) changes nothing, and a level
   // below a full-rank level is fixed (null space of dimension 0).

@@ -1,5 +1,6 @@
 // ctest-labels: unit
-// solve() of the QP solver and update()+solve() of the hierarchical QP never allocate. Every heap allocation
+// solve() of the QP solver (every path: fast, dual method, refinement, proximal iterations, unbounded, failures) and
+// update()+solve() of the hierarchical QP never allocate. Every heap allocation
 // of this test binary is counted twice over: a replaced global operator new (C++ allocations) and malloc &
 // friends interposed on glibc's (Eigen allocates with malloc, not operator new). Neither count may move
 // during the loops.
@@ -11,8 +12,10 @@
 #include <cstdlib>
 #include <new>
 #include <random>
+#include <vector>
 
 #include "qp/hqp_solver.hpp"
+#include "random_qp.hpp"
 #include "toy_arm.hpp"
 
 using centaur_test::g_malloc_calls;
@@ -153,4 +156,50 @@ TEST(QpAllocations, LargestSizesNeverAllocate) {
   }
   EXPECT_EQ(allocations() - before, 0);
   EXPECT_EQ(ok, 20);
+}
+
+TEST(QpAllocations, SingularUnboundedAndRejectedSolvesNeverAllocate) {
+  // The paths behind the KKT check: proximal-point iterations on a rank-deficient H (polished on their active set),
+  // an unbounded problem (ray), a failed KKT check with refinement and fallback (kInaccurate), a proximal iteration
+  // limit, and infeasibility confirmed after refining. Each status is the expected one: the path did run.
+  std::mt19937 rng(11);
+  struct Case {
+    centaur::test::DenseQp qp;
+    QpStatus expected;
+    double kkt_tol;
+    int max_prox;
+  };
+  std::vector<Case> cases;
+  const centaur::test::KnownQp singular = centaur::test::knownAnswer(rng, 30, 12);
+  cases.push_back({singular.qp, QpStatus::kOptimal, 1e-9, 100});
+  cases.push_back({centaur::test::knownAnswer(rng, 100, 40).qp, QpStatus::kOptimal, 1e-9, 100});  // largest size
+  cases.push_back({centaur::test::unboundedQp(rng, 30, 20, false), QpStatus::kUnbounded, 1e-9, 100});
+  cases.push_back({centaur::test::unboundedQp(rng, 30, 20, false), QpStatus::kIterationLimit, 1e-9, 1});
+  cases.push_back({centaur::test::knownAnswer(rng, 30, 30).qp, QpStatus::kInaccurate, 1e-30, 100});
+  centaur::test::DenseQp infeasible = centaur::test::knownAnswer(rng, 30, 30).qp;
+  infeasible.C.conservativeResize(infeasible.C.rows() + 2, 30);
+  infeasible.c_lo.conservativeResize(infeasible.C.rows());
+  infeasible.c_up.conservativeResize(infeasible.C.rows());
+  infeasible.C.bottomRows(2).setOnes();
+  infeasible.c_lo.tail(2) << 1.0, -centaur::test::kInf;
+  infeasible.c_up.tail(2) << centaur::test::kInf, -1.0;
+  cases.push_back({infeasible, QpStatus::kInfeasible, 1e-9, 100});
+  int m_eq = 0, m_in = 0;
+  for (const Case& c : cases) {
+    m_eq = std::max(m_eq, static_cast<int>(c.qp.A_eq.rows()));
+    m_in = std::max(m_in, static_cast<int>(c.qp.C.rows()));
+  }
+  QpSolver s(100, m_eq, m_in);
+  int matched = 0, prox = 0;
+  const long before = allocations();
+  for (int round = 0; round < 3; ++round)
+    for (const Case& c : cases) {
+      s.settings().kkt_tol = c.kkt_tol;
+      s.settings().max_proximal_iterations = c.max_prox;
+      matched += centaur::test::solveQp(s, c.qp) == c.expected;
+      prox += s.proximalIterations();
+    }
+  EXPECT_EQ(allocations() - before, 0);
+  EXPECT_EQ(matched, 3 * static_cast<int>(cases.size()));
+  EXPECT_GT(prox, 0);
 }

@@ -7,8 +7,8 @@
 #include <limits>
 #include <random>
 
-#include "ipopt_oracle.hpp"
 #include "qp/qp_solver.hpp"
+#include "random_qp.hpp"
 
 using centaur::QpSolver;
 using centaur::QpStatus;
@@ -16,128 +16,10 @@ using centaur::test::DenseQp;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-QpStatus solveQp(QpSolver& s, const DenseQp& qp) {
-  return s.solve(qp.H, qp.g, qp.A_eq, qp.b_eq, qp.C, qp.c_lo, qp.c_up, qp.x_lo, qp.x_up);
-}
-
-// Relative KKT residual of (x, y) for the convention H x + g = A_eq' y_eq + C' y_in + y_box:
-// max of stationarity, primal violation, dual sign violation and complementarity, each scaled by the data.
-double kktResidual(const DenseQp& qp, const QpSolver& s) {
-  const VectorXd& x = s.x();
-  const VectorXd y_eq = s.yEq(), y_in = s.yIneq();
-  VectorXd stat = qp.H * x + qp.g - qp.A_eq.transpose() * y_eq - qp.C.transpose() * y_in;
-  const bool box = qp.x_lo.size() > 0;
-  if (box) stat -= s.yBox();
-  const double scale = 1.0 + (qp.H * x).cwiseAbs().maxCoeff() + qp.g.cwiseAbs().maxCoeff();
-  double res = stat.cwiseAbs().maxCoeff() / scale;
-  if (qp.A_eq.rows() > 0) {
-    res = std::max(res, ((qp.A_eq * x - qp.b_eq).array().abs() / (1.0 + qp.b_eq.array().abs())).maxCoeff());
-  }
-  auto side = [&](double v, double lo, double up, double y) {
-    double r = 0.0;
-    if (std::isfinite(lo)) r = std::max(r, (lo - v) / (1.0 + std::abs(lo)));
-    if (std::isfinite(up)) r = std::max(r, (v - up) / (1.0 + std::abs(up)));
-    if (y > 0.0) r = std::max(r, std::isfinite(lo) ? y * std::abs(v - lo) / (1.0 + std::abs(lo)) : y);
-    if (y < 0.0) r = std::max(r, std::isfinite(up) ? -y * std::abs(v - up) / (1.0 + std::abs(up)) : -y);
-    return r;
-  };
-  const VectorXd cx = qp.C * x;
-  for (int i = 0; i < qp.C.rows(); ++i) res = std::max(res, side(cx[i], qp.c_lo[i], qp.c_up[i], y_in[i]));
-  if (box)
-    for (int j = 0; j < qp.n(); ++j) res = std::max(res, side(x[j], qp.x_lo[j], qp.x_up[j], s.yBox()[j]));
-  return res;
-}
-
-// A random feasible problem: a point x0 satisfies every constraint; rows are made active at x0, redundant,
-// duplicated (also with flipped sign), rank deficient, one-sided or free; H sometimes ill-conditioned.
-DenseQp randomFeasible(std::mt19937& rng, int n_max = 25) {
-  std::uniform_int_distribution<int> dn(1, n_max);
-  std::normal_distribution<double> N(0.0, 1.0);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  const int n = dn(rng);
-  DenseQp qp;
-  VectorXd x0(n);
-  for (int j = 0; j < n; ++j) x0[j] = N(rng);
-  // Hessian: full rank, or low rank plus a small diagonal (ill-conditioned).
-  const int k = U(rng) < 0.3 ? std::max(1, n / 2) : n;
-  MatrixXd M(k, n);
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; j < n; ++j) M(i, j) = N(rng);
-  const double delta = U(rng) < 0.3 ? 1e-4 : 0.1 + U(rng);
-  qp.H = M.transpose() * M / k + delta * MatrixXd::Identity(n, n);
-  qp.g.resize(n);
-  for (int j = 0; j < n; ++j) qp.g[j] = 3.0 * N(rng);
-  // Equalities, possibly rank deficient (rows that combine earlier rows, more rows than variables).
-  const int m_eq = std::uniform_int_distribution<int>(0, U(rng) < 0.2 ? n + 2 : std::max(0, n - 1))(rng);
-  qp.A_eq.resize(m_eq, n);
-  for (int i = 0; i < m_eq; ++i) {
-    if (i >= 2 && (U(rng) < 0.25 || i >= n)) {
-      qp.A_eq.row(i) = N(rng) * qp.A_eq.row(i - 1) + N(rng) * qp.A_eq.row(i - 2);
-    } else {
-      for (int j = 0; j < n; ++j) qp.A_eq(i, j) = N(rng);
-    }
-  }
-  qp.b_eq = qp.A_eq * x0;
-  // Two-sided inequality rows.
-  const int m_in = std::uniform_int_distribution<int>(0, 2 * n)(rng);
-  qp.C.resize(m_in, n);
-  qp.c_lo.resize(m_in);
-  qp.c_up.resize(m_in);
-  for (int i = 0; i < m_in; ++i) {
-    const double kind = U(rng);
-    if (i >= 1 && kind < 0.08) {  // duplicate of the previous row
-      qp.C.row(i) = qp.C.row(i - 1);
-      qp.c_lo[i] = qp.c_lo[i - 1];
-      qp.c_up[i] = qp.c_up[i - 1];
-      continue;
-    }
-    if (i >= 1 && kind < 0.14) {  // the previous row negated (bounds swapped)
-      qp.C.row(i) = -qp.C.row(i - 1);
-      qp.c_lo[i] = -qp.c_up[i - 1];
-      qp.c_up[i] = -qp.c_lo[i - 1];
-      continue;
-    }
-    if (i >= 2 && kind < 0.2) {  // a combination of two earlier rows
-      qp.C.row(i) = qp.C.row(i - 1) + 0.5 * qp.C.row(i - 2);
-    } else {
-      for (int j = 0; j < n; ++j) qp.C(i, j) = N(rng);
-    }
-    const double c = qp.C.row(i).dot(x0);
-    const double t = U(rng);
-    if (t < 0.2) {  // active lower at x0
-      qp.c_lo[i] = c;
-      qp.c_up[i] = U(rng) < 0.5 ? kInf : c + U(rng);
-    } else if (t < 0.4) {  // active upper at x0
-      qp.c_lo[i] = U(rng) < 0.5 ? -kInf : c - U(rng);
-      qp.c_up[i] = c;
-    } else if (t < 0.45) {  // equality written as an inequality row
-      qp.c_lo[i] = qp.c_up[i] = c;
-    } else if (t < 0.5) {  // free row
-      qp.c_lo[i] = -kInf;
-      qp.c_up[i] = kInf;
-    } else {  // slack both sides, one side maybe infinite
-      qp.c_lo[i] = U(rng) < 0.2 ? -kInf : c - 0.5 * U(rng);
-      qp.c_up[i] = U(rng) < 0.2 ? kInf : c + 0.5 * U(rng);
-    }
-  }
-  // Box bounds half of the time, some active at x0.
-  if (U(rng) < 0.5) {
-    qp.x_lo.resize(n);
-    qp.x_up.resize(n);
-    for (int j = 0; j < n; ++j) {
-      const double t = U(rng);
-      qp.x_lo[j] = t < 0.2 ? x0[j] : (t < 0.3 ? -kInf : x0[j] - U(rng));
-      const double s = U(rng);
-      qp.x_up[j] = s < 0.2 ? x0[j] : (s < 0.3 ? kInf : x0[j] + U(rng));
-    }
-  }
-  return qp;
-}
-
-}  // namespace
+using centaur::test::kktResidual;
+using centaur::test::randomFeasible;
+using centaur::test::solveQp;
+constexpr double kInf = centaur::test::kInf;
 
 TEST(QpSolver, UnconstrainedAndBoxAnalytic) {
   // min 1/2 ||x||^2 - a'x, box [0, 1]: x = clamp(a), multipliers y_box = x - a.

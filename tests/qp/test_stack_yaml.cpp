@@ -151,6 +151,15 @@ TEST(StackYaml, BadInputNamesFileAndKey) {
   expectError("stack: [[tip]]\ntip: {type: TipPosition}\nextra: 1\n", "extra");        // unused top-level key
   expectError("stack: [[tip]]\nconstraints: [lim]\ntip: {type: TipPosition}\n", "lim");
   expectError("stack: []\n", "stack");
+  // The regularisation must dominate the weights enough for the QP solver (1e-7 x the largest scale x weight).
+  expectError("stack: [[tip]]\nregularisation: 1.0e-10\ntip: {type: TipPosition}\n", "regularisation");
+  expectError("stack: [[tip]]\ntip: {type: TipPosition, weight: [1.0e3, 1.0]}\n", "regularisation");
+  expectError("stack: [[tip]]\ntip: {type: TipPosition, scale: 20.0}\n", "'tip': 20");
+  EXPECT_NO_THROW((void)loadStack(YAML::Load("stack: [[tip]]\nregularisation: 1.0e-7\ntip: {type: TipPosition}\n"),
+                                  "ok.yaml", reg));
+  EXPECT_NO_THROW((void)loadStack(
+      YAML::Load("stack: [[tip]]\nregularisation: 1.0e-4\ntip: {type: TipPosition, weight: [1.0e3, 1.0]}\n"),
+      "ok.yaml", reg));
 }
 
 TEST(StackYaml, RegistryRejectsDuplicateTypes) {
