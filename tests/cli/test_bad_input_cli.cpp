@@ -189,6 +189,10 @@ TEST(BadInputCli, NonFiniteNumbersAndUnknownNamesAreRefused) {
        {"render.camera", "moon", "side"}, {png}},
       {"planner nan", "plan squat-jump --out " + shq(dir.file("o.h5")) + " --set target.height=.nan",
        {"target.height"}, {dir.file("o.h5")}},
+      {"robot --duration nan", "robot stand --lockstep --duration nan --out " + shq(dir.file("r.h5")), {"--duration"},
+       {dir.file("r.h5")}},
+      {"report --rate nan", "report --primitive " + shq(dir.file("none.h5")) + " --rate nan", {"--rate"}},
+      {"control --start-after nan", "control squat-jump --start-after nan", {"--start-after"}},
   });
 }
 
@@ -281,6 +285,13 @@ TEST(BadInputCli, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
       {"compare log = --primitives", "compare --out " + shq(dir.path().string()) + " --jumps squat-jump --modes none " +
                                          "--primitives " + shq(dir.file("squat-jump-none.h5")),
        {"--primitives", "squat-jump-none.h5"}, {}, {dir.file("squat-jump-none.h5")}},
+      {"report --out = the log", "report " + shq(dir.file("squat-jump-none.h5")) + " --out " +
+                                     shq(dir.file("squat-jump-none.h5")),
+       {"--out", "the log"}, {}, {dir.file("squat-jump-none.h5")}},
+      {"report --out = --primitive", "report --primitive " + q + " --out " + shq(dir.file("link.h5")),
+       {"--out", "--primitive"}, {}, {prim}},
+      {"robot --out = --config", "robot stand --lockstep --config " + shq(simcfg) + " --out " + shq(simcfg),
+       {"--out", "--config"}, {}, {simcfg}},
   });
 }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "data/primitive_io.hpp"
+#include "support/child_process.hpp"
 #include "support/cli_run.hpp"
 #include "support/synthetic_primitive.hpp"
 #include "support/temp_dir.hpp"
@@ -51,26 +52,6 @@ std::vector<std::string> markers(const centaur_test::TempDir& dir) {
     if (n.rfind("PWNED", 0) == 0) found.push_back(n);
   }
   return found;
-}
-
-/// Start `centaur args` in `cwd` with the default signal dispositions (a shell's background job ignores SIGINT).
-pid_t start(const std::string& cwd, const std::vector<std::string>& args) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
-    if (chdir(cwd.c_str()) != 0) _exit(127);
-    std::vector<std::string> all{CENTAUR_BIN};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    freopen("/dev/null", "w", stdout);
-    freopen("/dev/null", "w", stderr);
-    execv(CENTAUR_BIN, argv.data());
-    _exit(127);
-  }
-  return pid;
 }
 
 bool anyWithPrefix(const centaur_test::TempDir& dir, const std::string& prefix) {
@@ -135,8 +116,11 @@ TEST(OutputSafetyCli, FfmpegOutputPathsAreLocalFilesNotOptionsOrUrls) {
 TEST(OutputSafetyCli, SignalsLeaveNoOutputNoTemporaryAndNoFfmpeg) {
   for (int sig : {SIGINT, SIGTERM}) {
     centaur_test::TempDir dir("signal");
-    const pid_t pid = start(dir.path().string(), {"simulate", "stand", "--duration", "60", "--video", "v.mp4", "--out",
-                                                  "v.h5", "--set", "render.width=64", "--set", "render.height=48"});
+    centaur_test::TempDir logs("signal-log");  // the command's output, outside the directory that must stay empty
+    centaur_test::ChildProcess command(CENTAUR_BIN,
+                                       {"simulate", "stand", "--duration", "60", "--video", "v.mp4", "--out", "v.h5",
+                                        "--set", "render.width=64", "--set", "render.height=48"},
+                                       logs.file("out.txt"), dir.path().string());
     // Wait until the video's temporary exists (ffmpeg started), then stop the command.
     const auto t0 = std::chrono::steady_clock::now();
     while (!anyWithPrefix(dir, "v.mp4.tmp.") && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(120)) {
@@ -144,10 +128,9 @@ TEST(OutputSafetyCli, SignalsLeaveNoOutputNoTemporaryAndNoFfmpeg) {
     }
     ASSERT_TRUE(anyWithPrefix(dir, "v.mp4.tmp.")) << "the run never started its video";
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
-    kill(pid, sig);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "the command ends with the signal";
+    command.signal(sig);
+    ASSERT_TRUE(command.wait(60.0)) << "the command did not stop";
+    EXPECT_EQ(command.code(), 128 + sig) << "the command ends with the signal\n" << command.output();
     std::this_thread::sleep_for(std::chrono::milliseconds(500));  // an ffmpeg left running would write now
     EXPECT_TRUE(dir.entries().empty()) << "left behind: " << (dir.entries().empty() ? "" : dir.entries().front());
   }
