@@ -60,15 +60,22 @@ double percentile(std::vector<double> v, double p) {
   return v[k];
 }
 
-robot_node::RobotNodeResult runPair(const std::string& task, bool lockstep, double duration, int domain,
+/// Where both nodes run: a private DDS domain and a scheduling priority (0 = normal).
+struct PairSetup {
+  int domain = 0;
+  int realtime_priority = 0;
+};
+
+robot_node::RobotNodeResult runPair(const std::string& task, bool lockstep, double duration, const PairSetup& setup,
                                     std::vector<std::string> control_args, std::size_t record) {
-  const std::string dom = "middleware.domain=" + std::to_string(domain);
-  control_args.insert(control_args.begin(), {task, "--set", dom});
+  const std::string dom = "middleware.domain=" + std::to_string(setup.domain);
+  const std::string prio = "middleware.realtime_priority=" + std::to_string(setup.realtime_priority);
+  control_args.insert(control_args.begin(), {task, "--set", dom, "--set", prio});
   ControlChild control(control_args);
   robot_node::RobotNodeArgs a;
   a.task = task;
   a.lockstep = lockstep;
-  a.overrides = {"duration=" + std::to_string(duration), dom};
+  a.overrides = {"duration=" + std::to_string(duration), dom, prio};
   a.record_round_trips = record;
   return robot_node::runRobotNode(a);
 }
@@ -84,11 +91,14 @@ std::string jumpsFile(const std::string& given, std::string& tmp) {
 
 }  // namespace
 
-nlohmann::json benchMiddleware(const std::string& primitives) {
-  const int domain = 200 + static_cast<int>(::getpid() % 30);  // a private domain, away from the default 0
+nlohmann::json benchMiddleware(const std::string& primitives, int realtime_priority) {
+  PairSetup setup;
+  setup.domain = 200 + static_cast<int>(::getpid() % 30);  // a private domain, away from the default 0
+  setup.realtime_priority = realtime_priority;
   nlohmann::json out;
+  out["realtime_priority"] = realtime_priority;
   std::fprintf(stderr, "bench middleware: lockstep stand 5 s (round trips) ...\n");
-  const auto rt = runPair("stand", true, 5.0, domain, {}, 10000);
+  const auto rt = runPair("stand", true, 5.0, setup, {}, 10000);
   const std::vector<double>& v = rt.remote.round_trip_us;
   out["round_trip_us"] = {{"samples", v.size()},          {"p50", percentile(v, 0.5)},
                           {"p99", percentile(v, 0.99)},   {"max", v.empty() ? 0.0 : *std::max_element(v.begin(), v.end())}};
@@ -97,7 +107,7 @@ nlohmann::json benchMiddleware(const std::string& primitives) {
                out["round_trip_us"]["p50"].get<double>(), out["round_trip_us"]["p99"].get<double>(),
                out["round_trip_us"]["max"].get<double>(), v.size());
   std::fprintf(stderr, "bench middleware: realtime stand 10 s ...\n");
-  const auto live = runPair("stand", false, 10.0, domain, {}, 0);
+  const auto live = runPair("stand", false, 10.0, setup, {}, 0);
   out["realtime_stand"] = {{"control_periods", live.summary.control_periods},
                            {"late_periods", live.remote.late_periods},
                            {"watchdog_trips", live.remote.watchdog_trips},
@@ -108,7 +118,7 @@ nlohmann::json benchMiddleware(const std::string& primitives) {
   std::string tmp;
   const std::string file = jumpsFile(primitives, tmp);
   std::fprintf(stderr, "bench middleware: lockstep squat jump (raibert) ...\n");
-  const auto jump = runPair("squat-jump", true, 5.0, domain,
+  const auto jump = runPair("squat-jump", true, 5.0, setup,
                             {"--primitive", file, "--stabilizer", "raibert", "--start-after", "0.5"}, 0);
   if (!tmp.empty()) std::filesystem::remove(tmp);
   out["lockstep_squat_jump"] = {{"outcome", jump.summary.outcome},

@@ -9,7 +9,7 @@
 // The closed-loop real-time factor of `simulate <jump> --stabilizer <mode>` (physics, impedance and the 1 kHz
 // whole-body tick; outputs off), each run alone (one at a time), the (jump, mode) pairs interleaved N times so that
 // a change of the machine's speed spreads over all of them; median, min and max per pair.
-// centaur bench middleware [--primitives P.h5] [--json]: the nodes over loopback DDS (cli/bench_middleware.hpp).
+// centaur bench middleware [--primitives P.h5] [--realtime-priority N] [--json]: the nodes over loopback DDS (cli/bench_middleware.hpp).
 // (Timings are measured, never asserted in tests; record them in docs/benchmarks.md.)
 #include <nlohmann/json.hpp>
 
@@ -39,6 +39,7 @@ struct BenchArgs {
   std::string stack;
   bool json = false;
   std::string primitives, flywheel;  // jump: the plans to replay
+  int realtime_priority = 0;         // middleware: SCHED_FIFO priority of both nodes (0 = normal scheduling)
   std::vector<std::string> jumps = {"squat-jump", "half-squat-jump"};
   std::vector<std::string> modes = {"none", "raibert", "angmom", "ocp"};
 };
@@ -238,7 +239,7 @@ int runBench(const BenchArgs& a) {
       }
     }
   }
-  if (a.target == "middleware") out = benchMiddleware(a.primitives);
+  if (a.target == "middleware") out = benchMiddleware(a.primitives, a.realtime_priority);
   if (a.json) printJsonLine(out);
   return kExitOk;
 }
@@ -260,6 +261,10 @@ const Registrar kBench{{"bench",
                           sub.add_option("--primitives", a->primitives,
                                          "jump, middleware: primitive file with the jumps")
                               ->check(CLI::ExistingFile);
+                          sub.add_option("--realtime-priority", a->realtime_priority,
+                                         "middleware: SCHED_FIFO priority of both nodes (middleware.realtime_priority; "
+                                         "0 = normal scheduling)")
+                              ->check(CLI::Range(0, 98));
                           sub.add_option("--flywheel", a->flywheel, "jump: arm-flywheel file (mode ocp)")
                               ->check(CLI::ExistingFile);
                           sub.add_option("--jumps", a->jumps, "jump: the jumps")

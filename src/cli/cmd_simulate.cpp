@@ -1,9 +1,11 @@
 // centaur simulate <scenario> [--duration S] [--config F.yaml] [--set key=value]... [--out LOG.h5]
 //                             [--video F.mp4] [--snapshot F.png --at T] [--json] [scenario options]
+//                             [--select key=value]... (jumps: a grid point of a `centaur sweep` database)
 // One sub-command per registered scenario (src/sim/scenario.hpp: built-in `stand`; others register a
 // sim::ScenarioRegistrar from their own file and get the common options plus their ScenarioOptions).
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -12,6 +14,7 @@
 
 #include "cli/command.hpp"
 #include "common/error.hpp"
+#include "data/primitive_database.hpp"
 #include "sim/scenario.hpp"
 #include "sim/sim_runner.hpp"
 
@@ -27,6 +30,7 @@ struct SimulateArgs {
   double at = -1.0;
   bool json = false;
   std::map<std::string, std::string> options;  // scenario options
+  std::vector<std::string> selects;            // --select key=value (a grid point of a sweep database)
 };
 
 nlohmann::json toJson(const sim::RunSummary& s, const std::string& scenario) {
@@ -45,6 +49,51 @@ nlohmann::json toJson(const sim::RunSummary& s, const std::string& scenario) {
   return j;
 }
 
+/// `--primitive DB --select key=value...`: the nearest grid point of the database (data/primitive_database.hpp)
+/// becomes --primitive-group. A database without --select: its only grid point of the jump, if it has one.
+/// Returns the chosen group's description for the JSON line ("" if no database is involved).
+nlohmann::json selectFromDatabase(const sim::Scenario& scenario, const std::vector<std::string>& selects,
+                                  std::map<std::string, std::string>& options) {
+  const auto file = options.find("primitive");
+  const bool has_file = file != options.end() && !file->second.empty();
+  if (!selects.empty() && !has_file) throw InputError("--select needs --primitive DB.h5 (written by centaur sweep)");
+  if (!has_file || options.count("primitive-group") > 0) {
+    if (!selects.empty()) throw InputError("--select and --primitive-group exclude each other");
+    return nullptr;
+  }
+  if (selects.empty() && !data::isDatabase(file->second)) return nullptr;
+  const data::DatabaseIndex index = data::readDatabaseIndex(file->second);  // InputError if not a database
+  std::vector<data::Selection> selections;
+  for (const std::string& s : selects) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError("--select '" + s + "': expected key=value, e.g. target.height=0.85");
+    selections.push_back({s.substr(0, eq), s.substr(eq + 1)});
+  }
+  if (selections.empty()) {
+    std::size_t n = 0;
+    for (const auto& e : index.points) n += e.jump == scenario.name && e.solve_status == "solved" ? 1 : 0;
+    if (n > 1) {
+      std::string axes;
+      for (const auto& k : index.axes) axes += (axes.empty() ? "" : ", ") + k;
+      throw InputError(file->second + ": a database with " + std::to_string(n) + " grid points of " + scenario.name +
+                       "; choose one with --select key=value (axes: " + axes + ")");
+    }
+  }
+  const data::GridEntry& e = index.points[data::selectGridPoint(index, scenario.name, selections, file->second)];
+  options["primitive-group"] = e.group;
+  nlohmann::json j;
+  j["group"] = e.group;
+  j["point"] = e.point;
+  std::string text;
+  for (std::size_t a = 0; a < index.axes.size(); ++a) {
+    j["values"][index.axes[a]] = e.values[a].numeric ? nlohmann::json(e.values[a].number) : nlohmann::json(e.values[a].text);
+    text += (text.empty() ? "" : ", ") + index.axes[a] + "=" + e.values[a].yaml();
+  }
+  std::cout << "simulate " << scenario.name << ": grid point " << e.group << " of " << file->second << " ("
+            << (text.empty() ? std::string("no axes") : text) << ")\n";
+  return j;
+}
+
 int runSimulate(const sim::Scenario& scenario, const SimulateArgs& a) {
   std::vector<std::string> overrides = a.sets;
   if (a.duration > 0.0) {
@@ -59,7 +108,9 @@ int runSimulate(const sim::Scenario& scenario, const SimulateArgs& a) {
   outputs.video_path = a.video;
   outputs.snapshot_path = a.snapshot;
   outputs.snapshot_time = a.at;
-  const sim::RunSummary s = sim::runScenario(scenario, a.config, overrides, a.options, outputs);
+  std::map<std::string, std::string> options = a.options;
+  const nlohmann::json selected = selectFromDatabase(scenario, a.selects, options);
+  const sim::RunSummary s = sim::runScenario(scenario, a.config, overrides, options, outputs);
   std::cout << "simulate " << scenario.name << ": " << s.outcome << " after " << s.duration_s
             << " s; pelvis drift " << s.pelvis_drift_m * 1000.0 << " mm, peak pitch " << s.peak_pitch_deg
             << " deg, peak roll " << s.peak_roll_deg << " deg, real-time factor " << s.real_time_factor << "\n";
@@ -70,7 +121,11 @@ int runSimulate(const sim::Scenario& scenario, const SimulateArgs& a) {
                  "%.0f us control period: this controller (stack) cannot run at its rate on this machine\n",
                  s.tick_time_us_median, s.tick_time_us_p99, s.ticks_over_period, s.control_period_us);
   }
-  if (a.json) printJsonLine(toJson(s, scenario.name));
+  if (a.json) {
+    nlohmann::json j = toJson(s, scenario.name);
+    if (!selected.is_null()) j["grid_point"] = selected;
+    printJsonLine(j);
+  }
   return kExitOk;  // the run completed; a fall is an outcome (in the summary), not a failure
 }
 
@@ -92,6 +147,13 @@ const Registrar registrar{Command{
         s->add_option("--snapshot", args->snapshot, "render one frame to a PNG (with --at)");
         s->add_option("--at", args->at, "snapshot time [s]")->check(finiteRange(0.0, 3600.0));
         s->add_flag("--json", args->json, "print one JSON summary object as the last line of stdout");
+        const bool replays_primitive = std::any_of(scenario.options.begin(), scenario.options.end(),
+                                                   [](const sim::ScenarioOption& o) { return o.name == "primitive"; });
+        if (replays_primitive) {
+          s->add_option("--select", args->selects,
+                        "with --primitive DB.h5 of `centaur sweep`: the grid point nearest to key=value (repeatable; "
+                        "docs/sweeps.md)");
+        }
         for (const auto& o : scenario.options) {
           auto* opt = s->add_option_function<std::string>(
               "--" + o.name, [args, name = o.name](const std::string& v) { args->options[name] = v; }, o.help);

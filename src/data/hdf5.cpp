@@ -217,6 +217,7 @@ namespace {
 /// One string of a string-typed attribute held in `type` (variable- or fixed-length).
 bool readStrings(hid_t attr, hid_t type, hsize_t n, std::vector<std::string>& out) {
   out.clear();
+  if (n == 0) return true;  // an empty list (HDF5 refuses to read zero elements into no buffer)
   if (H5Tis_variable_str(type) > 0) {
     Id mem(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(mem.get(), H5T_VARIABLE);

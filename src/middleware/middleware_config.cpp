@@ -15,6 +15,7 @@ const char* MiddlewareConfig::defaultsYaml() {
   peers: []                   # extra unicast discovery peers, e.g. [192.168.1.10]
   config_file: ""             # a Cyclone DDS XML file, used as is ("" = generated from interface and peers)
   namespace: /centaur         # ROS namespace of every topic
+  realtime_priority: 0        # SCHED_FIFO priority of the node's threads, [0, 98]; 0 = normal scheduling
 )";
 }
 
@@ -47,6 +48,7 @@ bool rosNamespace(const std::string& s) {
 
 void MiddlewareConfig::read(YamlReader& r) {
   r.get("domain", domain, 0, 232);
+  r.get("realtime_priority", realtime_priority, 0, 98);
   r.get("interface", interface);
   if (interface != "auto" && !plainToken(interface)) {
     r.fail("interface", "must be a network interface name (letters, digits, . _ - :) or auto");

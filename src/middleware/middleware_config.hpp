@@ -23,6 +23,9 @@ struct MiddlewareConfig {
   std::vector<std::string> peers;    ///< extra unicast discovery peers (host names or addresses)
   std::string config_file;           ///< Cyclone DDS XML file; "" = generated (see above)
   std::string ns = "/centaur";       ///< ROS namespace of every topic ("/centaur/joint_states")
+  /// SCHED_FIFO priority of the node's threads (its loop and Cyclone's receive threads), [1, 98]; 0 = the normal
+  /// time-sharing scheduler. Needs root, CAP_SYS_NICE or an rtprio limit (`ulimit -r`).
+  int realtime_priority = 0;
 
   /// The `middleware:` section with its documented defaults (YAML text, root key `middleware:`).
   static const char* defaultsYaml();

@@ -46,6 +46,7 @@ limits:
 target:
   height: 0.87
   wall_distance: 0.15
+  wall_height: 0.0
 cost:
   base_height: 50.0
   base_velocity: 0.0
@@ -206,6 +207,7 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   auto t = r.child("target");
   t.get("height", c.target_height, 0.0, 5.0);
   t.get("wall_distance", c.wall_distance, 0.0, 1.0);
+  t.get("wall_height", c.wall_height, 0.0, 2.0);
   t.finish();
 
   auto k = r.child("cost");

@@ -74,6 +74,8 @@ struct JumpConfig {
   LimitsConfig limits;
   double target_height = 0.9;   ///< [m] squat-jump: waist height (world z) to reach in flight
   double wall_distance = 0.15;  ///< [m] half-squat-jump: wall (foot-point plane) behind the rear wheel centres
+  double wall_height = 0.0;     ///< [m] half-squat-jump: height (world z) of the rear wheel centres on the wall from
+                                ///< their touch-down on; 0 = free (the optimizer places them)
   CostConfig cost;
   SolverSettings solver;
   std::string source = "<defaults>";  ///< where the configuration came from (for messages)

@@ -209,6 +209,10 @@ void JumpProblem::buildContacts() {
         auto ve = std::make_shared<FootVelocityElement>(P, i);
         ocp_.addTerm(ocp_.addConstraint("contact_velocity", k, constant(3, 0.0), constant(3, 0.0)), ve, footVelIn(k, i));
       }
+      if (S.name == "wall" && cfg_.wall_height > 0.0) {  // target.wall_height: touch-down height on the wall
+        auto he = std::make_shared<FootSurfaceElement>(P, i, Eigen::Vector3d::UnitZ(), -cfg_.wall_height);
+        ocp_.addTerm(ocp_.addConstraint("wall_height", k, constant(1, 0.0), constant(1, 0.0)), he, footKin(k, i));
+      }
       for (int n = k; n <= e + 1; ++n) pinned[n] = 1;
       if (cfg_.cost.stance_foot_velocity > 0) {
         auto ve = std::make_shared<FootVelocitySquared>(P, i);

@@ -108,12 +108,69 @@ MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng
     m_->geom_pos[3 * wall_geom] = settings_.wall_x - m_->geom_size[3 * wall_geom];
   }
 
+  if (settings_.push.impulse > 0.0) {
+    push_body_ = mj_name2id(m_, mjOBJ_BODY, settings_.push.body.c_str());
+    if (push_body_ <= 0 || !(settings_.push.duration > 0.0) || !(settings_.push.direction.norm() > 0.0)) {
+      mj_deleteData(d_);
+      mj_deleteModel(m_);
+      throw InputError(path + ": push.body '" + settings_.push.body +
+                       "' is not a body of the model (or push.duration / push.direction is zero)");
+    }
+    settings_.push.direction.normalize();
+  }
+  if (settings_.mass_scale != 1.0 || !settings_.com_offset.isZero(0.0)) applyModelError();
+
   command_.resize(n_);
   tau_applied_.setZero(n_);
   tau_cmd_.setZero(n_);
   delay_.resize(static_cast<std::size_t>(settings_.latency_periods) + 1);
   for (auto& s : delay_) s.resize(n_);
   reset();
+}
+
+void MujocoRobot::applyModelError() {
+  if (base_dof_ < 0 || !(settings_.mass_scale > 0.0)) {
+    mj_deleteData(d_);
+    mj_deleteModel(m_);
+    throw InputError(settings_.model_path +
+                     ": robot.mass_scale / robot.com_offset need a floating-base robot and a positive scale");
+  }
+  int base_body = -1;
+  for (int j = 0; j < m_->njnt; ++j) {
+    if (m_->jnt_type[j] == mjJNT_FREE) base_body = m_->jnt_bodyid[j];
+  }
+  const int root = m_->body_rootid[base_body];
+  double total = 0.0;
+  for (int b = 1; b < m_->nbody; ++b) {
+    if (m_->body_rootid[b] != root) continue;  // the world's other bodies (ground, wall) keep their masses
+    m_->body_mass[b] *= settings_.mass_scale;
+    for (int k = 0; k < 3; ++k) m_->body_inertia[3 * b + k] *= settings_.mass_scale;
+    total += m_->body_mass[b];
+  }
+  // Moving the base body's CoM by d * M / m_base moves the whole robot's CoM by d (the base frame's axes).
+  if (m_->body_mass[base_body] > 0.0 && !settings_.com_offset.isZero(0.0)) {
+    for (int k = 0; k < 3; ++k) {
+      m_->body_ipos[3 * base_body + k] += settings_.com_offset[k] * total / m_->body_mass[base_body];
+    }
+    // MuJoCo's shortcuts for frames that coincide with the inertial frame no longer hold: the geoms and sites
+    // stay where they were on the body (their offsets are relative to the body frame).
+    m_->body_sameframe[base_body] = 0;
+    for (int g = 0; g < m_->ngeom; ++g) {
+      if (m_->geom_bodyid[g] == base_body && m_->geom_sameframe[g] == 2) m_->geom_sameframe[g] = 0;
+    }
+    for (int i = 0; i < m_->nsite; ++i) {
+      if (m_->site_bodyid[i] == base_body && m_->site_sameframe[i] == 2) m_->site_sameframe[i] = 0;
+    }
+  }
+  mj_setConst(m_, d_);  // subtree masses, inverse weights, actuator_acc0, ... of the changed model
+}
+
+void MujocoRobot::applyPush() {
+  const double t = d_->time;
+  const PushSettings& p = settings_.push;
+  const bool on = t >= p.start && t < p.start + p.duration;
+  const Eigen::Vector3d f = on ? Eigen::Vector3d(p.impulse / p.duration * p.direction) : Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) d_->xfrc_applied[6 * push_body_ + k] = f[k];
 }
 
 MujocoRobot::~MujocoRobot() {
@@ -211,6 +268,7 @@ void MujocoRobot::applyImpedance() {
 void MujocoRobot::physicsStep() {
   mj_step1(m_, d_);
   applyImpedance();
+  if (push_body_ > 0) applyPush();
   mj_step2(m_, d_);
 }
 
@@ -231,6 +289,7 @@ void MujocoRobot::beginPeriod(RobotState& state) {
 void MujocoRobot::endPeriod(const JointCommand& command) {
   write(command);
   applyImpedance();
+  if (push_body_ > 0) applyPush();
   // The sensors of mj_step2 (the accelerometer: a full post-constraint RNE pass) are read only by the next
   // sample, after the period's last step: with more than one step per period, skip them in this first one.
   const int disable = m_->opt.disableflags;

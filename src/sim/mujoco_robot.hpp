@@ -15,6 +15,11 @@
 // Joint order: the MJCF actuator order (CENTAURO's MJCF names each motor after its joint, in the same order
 // as RobotModel::jointNames()). Every actuator must be a motor on a hinge/slide joint.
 //
+// Perturbations (sweeps; all off by default, and then the model is used exactly as loaded): every robot body's
+// mass and inertia scaled, the whole robot's CoM shifted (by moving the floating-base body's CoM), and a push
+// (a constant force at one body's CoM during a time window). Only the simulated robot changes: a controller
+// builds its own model from the MJCF and keeps the nominal masses.
+//
 // Deterministic: the same settings and the same controller give bitwise-identical trajectories.
 // Model/Data split: everything is allocated in the constructor; the loop never allocates.
 #include <mujoco/mujoco.h>
@@ -41,6 +46,15 @@ struct SensorNoise {
   double orientation = 0.0;  ///< [rad] IMU orientation (random rotation vector per sample)
 };
 
+/// An external push: a constant force on one body (at its CoM) during [start, start + duration) robot time.
+struct PushSettings {
+  double impulse = 0.0;                          ///< [N s] magnitude; 0 = no push (the default)
+  std::string body = "pelvis";                   ///< MJCF body pushed
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  ///< world frame, unit
+  double start = 1.0;                            ///< [s] robot time
+  double duration = 0.1;                         ///< [s]; force = impulse / duration * direction
+};
+
 struct SimSettings {
   std::string model_path;          ///< MJCF file
   double timestep = 0.0005;        ///< [s] physics step (overrides the MJCF's)
@@ -51,6 +65,12 @@ struct SimSettings {
   SensorNoise noise;               ///< measurement noise (off)
   int latency_periods = 0;         ///< measurement delay [control periods] (off)
   std::uint64_t seed = 1;          ///< noise random seed
+  // The simulated robot's deviation from its model (the controller keeps the nominal model). Defaults: none,
+  // and then the loaded model is not touched at all.
+  double mass_scale = 1.0;         ///< [-] every robot body's mass and rotational inertia multiplied by this
+  Eigen::Vector3d com_offset = Eigen::Vector3d::Zero();  ///< [m] whole-robot CoM shift, floating-base frame
+                                   ///< (realised by moving the floating-base body's CoM)
+  PushSettings push;               ///< external push (off)
   std::string keyframe = "home";   ///< initial state (keyframe name; "" or missing -> the model's qpos0)
   /// Bodies whose contact forces are reported (ground truth), e.g. the four wheels.
   std::vector<std::string> contact_bodies = {"wheel_1", "wheel_2", "wheel_3", "wheel_4"};
@@ -121,6 +141,10 @@ class MujocoRobot final : public RobotInterface {
  private:
   void sampleMeasurement();
   void applyImpedance();
+  /// Scales the robot's masses and shifts its CoM (SimSettings::mass_scale, com_offset), then mj_setConst.
+  void applyModelError();
+  /// The push force of the coming physics step (xfrc_applied of the pushed body), from the robot time.
+  void applyPush();
 
   SimSettings settings_;
   mjModel* m_ = nullptr;
@@ -130,6 +154,7 @@ class MujocoRobot final : public RobotInterface {
   std::vector<int> qpos_adr_, dof_adr_;
   Eigen::VectorXd gear_, tau_max_, q_lo_, q_hi_;
   int base_qpos_ = -1, base_dof_ = -1;  // free joint (-1 if fixed base)
+  int push_body_ = -1;                   // body pushed (-1: no push)
   double last_tick_s_ = 0.0;
   int key_ = -1;
   int sensor_quat_ = -1, sensor_gyro_ = -1, sensor_acc_ = -1;

@@ -72,6 +72,10 @@ struct Scenario {
   std::function<std::unique_ptr<Controller>(ScenarioContext&)> make_controller;
   /// Optional (may be empty): created after the controller, with the same context.
   std::function<std::unique_ptr<RunObserver>(ScenarioContext&)> make_observer = nullptr;
+  /// Optional (may be empty): reads the `controller:` section as make_controller would, strictly and without
+  /// building anything (no model, no plan), so that a batch can check its overrides before it starts.
+  /// Throws InputError naming the key.
+  std::function<void(YamlReader& controller_config)> check_controller = nullptr;
 };
 
 /// All scenarios (the built-in `stand`, `squat-jump`, `half-squat-jump` first, then every ScenarioRegistrar in registration order).

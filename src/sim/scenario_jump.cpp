@@ -1,6 +1,7 @@
 // The jump scenarios (issue 5 item 5): `squat-jump` and `half-squat-jump`, a planned primitive replayed on
 // CENTAURO by the JumpController with one of the upper-body stabilizers.
 //   options: --primitive F.h5  (the group named like the scenario; absent -> planned now with the defaults)
+//            --primitive-group NAME (another group of that file, e.g. a grid point of a sweep database)
 //            --stabilizer none|raibert|angmom|ocp
 // Metrics and outcome: JumpObserver (jump_observer.hpp).
 #include <cstdio>
@@ -19,8 +20,9 @@ namespace centaur::sim {
 
 namespace {
 
-data::Primitive loadOrPlan(const std::string& name, const std::string& file) {
-  if (!file.empty()) return data::readPrimitive(file, name);
+data::Primitive loadOrPlan(const std::string& name, const std::string& file, const std::string& group) {
+  if (!group.empty() && file.empty()) throw InputError("--primitive-group " + group + ": needs --primitive F.h5");
+  if (!file.empty()) return data::readPrimitive(file, group.empty() ? name : group);
   std::fprintf(stderr, "planning %s with the default settings (give --primitive F.h5 to reuse a plan) ...\n",
                name.c_str());
   const planner::JumpConfig cfg = planner::loadJumpConfig(name, "", {});
@@ -44,7 +46,9 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
                 "", {}, false, true},
                {"stabilizer", "upper-body stabilizer", "none", {"none", "raibert", "angmom", "ocp"}, false},
                {"flywheel", "arm-flywheel plan (HDF5) for --stabilizer ocp (default: plan it now)", "", {}, false,
-                true}};
+                true},
+               {"primitive-group", "group of the --primitive file to replay (default: the one named like the jump)",
+                "", {}, false}};
   s.make_controller = [name](ScenarioContext& ctx) -> std::unique_ptr<Controller> {
     OnlineStageInputs in;
     in.model_path = ctx.config.robot.model_path;
@@ -53,7 +57,8 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
     in.flywheel_file = ctx.options.at("flywheel");
     in.flywheel_fallback = defaultArmFlywheel;
     const std::string file = ctx.options.at("primitive");
-    in.primitive = [name, file] { return loadOrPlan(name, file); };
+    const std::string group = ctx.options.at("primitive-group");
+    in.primitive = [name, file, group] { return loadOrPlan(name, file, group); };
     auto controller = makeOnlineController(name, ctx.controller_config, in);
     const auto& jump = static_cast<const JumpController&>(*controller);
     if (jump.wholeBody().ikModel().jointNames() != ctx.robot.jointNames()) {
@@ -61,6 +66,12 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
                        ": the controller model's joint order differs from the simulator's actuator order");
     }
     return controller;
+  };
+  s.check_controller = [](YamlReader& controller_config) {
+    JumpControllerParams params;
+    params.read(controller_config);
+    makeStabilizer("none", controller_config);  // reads every stabilizer section; builds nothing for "none"
+    controller_config.finish();
   };
   s.make_observer = [kind](ScenarioContext& ctx) -> std::unique_ptr<RunObserver> {
     JumpObserverParams p;

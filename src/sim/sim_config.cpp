@@ -23,6 +23,15 @@ sensors:
     gyro: 0.0             # [rad/s] IMU angular velocity, [0, 10]
     acc: 0.0              # [m/s^2] IMU specific force, [0, 100]
     orientation: 0.0      # [rad] IMU orientation, [0, 1]
+robot:                    # the simulated robot's deviation from its model; the controller keeps the nominal model
+  mass_scale: 1.0         # [-] every robot body's mass and inertia multiplied by this, [0.5, 2]
+  com_offset: [0.0, 0.0, 0.0]  # [m] shift of the whole robot's CoM (pelvis frame), each in [-0.1, 0.1]
+push:                     # an external push: a constant force at one body's CoM during a time window
+  impulse: 0.0            # [N s] magnitude (force = impulse / duration), [0, 1000]; 0 = no push
+  body: pelvis            # MJCF body pushed
+  direction: [1.0, 0.0, 0.0]  # world frame (normalised), each in [-1, 1], not all zero
+  start: 1.0              # [s] robot time the push starts, [0, 3600]
+  duration: 0.1           # [s] length of the push, [0.0005, 10]
 outcome:
   fall_height: 0.35       # [m] pelvis height below which the run is a fall, [0, 5]
   fall_tilt_deg: 45.0     # [deg] |roll| or |pitch| above which the run is a fall, [1, 180]
@@ -78,6 +87,27 @@ SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
     n.get("orientation", c.robot.noise.orientation, 0.0, 1.0);
     n.finish();
     s.finish();
+  }
+  {
+    auto b = r.child("robot");
+    b.get("mass_scale", c.robot.mass_scale, 0.5, 2.0);
+    Eigen::VectorXd offset = c.robot.com_offset;
+    b.get("com_offset", offset, -0.1, 0.1);
+    c.robot.com_offset = offset;
+    b.finish();
+  }
+  {
+    auto p = r.child("push");
+    PushSettings& push = c.robot.push;
+    p.get("impulse", push.impulse, 0.0, 1000.0);
+    p.get("body", push.body);
+    Eigen::VectorXd direction = push.direction;
+    p.get("direction", direction, -1.0, 1.0);
+    if (!(direction.norm() > 0.0)) p.fail("direction", "must not be [0, 0, 0]");
+    push.direction = direction.normalized();
+    p.get("start", push.start, 0.0, 3600.0);
+    p.get("duration", push.duration, 0.0005, 10.0);
+    p.finish();
   }
   {
     auto o = r.child("outcome");

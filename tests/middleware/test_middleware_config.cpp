@@ -3,10 +3,16 @@
 // (loopback: unicast peer 127.0.0.1, multicast off; another interface: that interface, multicast on), and bad
 // values refused with the key named (no XML injection through names).
 #include <gtest/gtest.h>
+#include <sched.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
 
 #include "common/error.hpp"
 #include "common/yaml_reader.hpp"
 #include "middleware/command_guard.hpp"
+#include "middleware/dds.hpp"
 #include "middleware/middleware_config.hpp"
 #include "middleware/topics.hpp"
 
@@ -63,6 +69,39 @@ TEST(MiddlewareConfig, BadValuesNameTheKey) {
   EXPECT_NE(errorOf("middleware: {namespace: /a//b}").find("middleware.namespace"), std::string::npos);
   EXPECT_NE(errorOf("middleware: {config_file: /nonexistent.xml}").find("middleware.config_file"), std::string::npos);
   EXPECT_NE(errorOf("middleware: {bogus: 1}").find("middleware.bogus"), std::string::npos);
+  EXPECT_NE(errorOf("middleware: {realtime_priority: 99}").find("middleware.realtime_priority"), std::string::npos);
+  EXPECT_NE(errorOf("middleware: {realtime_priority: -1}").find("middleware.realtime_priority"), std::string::npos);
+}
+
+TEST(MiddlewareConfig, RealtimePriorityPutsTheNodeAndCycloneThreadsUnderFifo) {
+  // In a child process (the test's own scheduling stays): a participant created with realtime_priority 3 runs
+  // the creating thread and every thread Cyclone DDS starts for it under SCHED_FIFO 3. Without the privilege
+  // the participant is refused with the key named.
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    mw::MiddlewareConfig c = read("middleware: {domain: 151, realtime_priority: 3}");
+    int code = 0;
+    try {
+      mw::Participant participant(c);
+      int threads = 0, fifo = 0;
+      for (const auto& e : std::filesystem::directory_iterator("/proc/self/task")) {
+        const pid_t tid = static_cast<pid_t>(std::stoi(e.path().filename().string()));
+        sched_param p{};
+        ++threads;
+        if (::sched_getscheduler(tid) == SCHED_FIFO && ::sched_getparam(tid, &p) == 0 && p.sched_priority == 3) ++fifo;
+      }
+      code = threads > 1 && fifo == threads ? 0 : 1;
+    } catch (const centaur::InputError& e) {
+      code = std::string(e.what()).find("middleware.realtime_priority") != std::string::npos ? 3 : 2;
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  if (WEXITSTATUS(status) == 3) GTEST_SKIP() << "SCHED_FIFO not permitted here (refused with the key named)";
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: a thread not under SCHED_FIFO 3; 2: refused without naming the key";
 }
 
 TEST(MiddlewareConfig, SafetyDefaultsAndRanges) {
