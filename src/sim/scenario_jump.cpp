@@ -1,4 +1,4 @@
-// The jump scenarios (issue 5 item 5): `squat-jump` and `half-squat-jump`, a planned primitive replayed on
+// The jump scenarios: `squat-jump` and `half-squat-jump`, a planned primitive replayed on
 // CENTAURO by the JumpController with one of the upper-body stabilizers.
 //   options: --primitive F.h5  (the group named like the scenario; absent -> planned now with the defaults)
 //            --primitive-group NAME (another group of that file, e.g. a grid point of a sweep database)
