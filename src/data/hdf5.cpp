@@ -314,15 +314,22 @@ std::string globalHeapDefect(const unsigned char* bytes, std::size_t size) {
       return "global heap collection at byte " + offset + " declares " + std::to_string(collection) +
              " bytes, beyond the end of the file";
     }
-    const unsigned char* stop = c + collection;
-    for (const unsigned char* o = c + 8 + lengths; o + 8 + lengths <= stop;) {
-      const std::uint64_t index = littleEndian(o, 2), object = littleEndian(o + 8, lengths);
-      if (index == 0) break;  // the free space ends the list
-      if (object > static_cast<std::uint64_t>(stop - (o + 8 + lengths))) {
+    // The objects as libhdf5 walks them when it loads the collection: object 0 is free space whose size counts
+    // its own header (libhdf5 advances by that size: 0 would loop forever); others advance by header + size.
+    const std::uint64_t header = 8 + lengths;
+    for (std::uint64_t at = header; at + header <= collection;) {  // byte offsets within the collection
+      const std::uint64_t index = littleEndian(c + at, 2), object = littleEndian(c + at + 8, lengths);
+      const std::uint64_t room = collection - at;
+      if (index == 0 && (object < header || object > room)) {
+        return "global heap collection at byte " + offset + ": its free space declares " + std::to_string(object) +
+               " bytes, not between its header (" + std::to_string(header) + ") and what is left (" +
+               std::to_string(room) + ")";
+      }
+      if (index != 0 && object > room - header) {
         return "global heap collection at byte " + offset + ": object " + std::to_string(index) + " declares " +
                std::to_string(object) + " bytes, more than its collection holds";
       }
-      o += 8 + lengths + ((object + 7) / 8) * 8;
+      at += index == 0 ? object : header + ((object + 7) / 8) * 8;
     }
   }
   return "";

@@ -12,6 +12,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "common/error.hpp"
 #include "data/arm_trajectory_io.hpp"
@@ -105,6 +106,50 @@ TEST(Validation, AFileAndItsImageInMemoryReadTheSame) {
   EXPECT_NE(refusal([&] { readPrimitives(FileImage{bad.data(), bad.size(), "cut.h5"}); }).find("cut.h5"),
             std::string::npos);
   EXPECT_NE(refusal([&] { readPrimitives(FileImage{"junk", 4, "junk.h5"}); }).find("junk.h5"), std::string::npos);
+}
+
+// Variable-length strings live in global heap collections ("GCOL"), which libhdf5 1.10 walks trusting their
+// sizes: a free-space block of 0 bytes makes it loop forever, an object larger than its collection makes it copy
+// out of bounds. Such collections are refused before libhdf5 reads them, from a file and from an image.
+TEST(Validation, CorruptGlobalHeapsAreRefusedBeforeLibhdf5WalksThem) {
+  centaur_test::TempDir dir;
+  const std::string path = dir.file("p.h5");
+  writePrimitive(path, centaur::test::makeSyntheticJump("squat-jump"));
+  const std::string good = bytes(path);
+  EXPECT_EQ(h5::globalHeapDefect(reinterpret_cast<const unsigned char*>(good.data()), good.size()), "");
+  const std::size_t gcol = good.find("GCOL");
+  ASSERT_NE(gcol, std::string::npos);
+  // Walk the objects (8-byte lengths, as our writer uses) to the free space, object index 0.
+  std::size_t at = gcol + 16, free_at = 0;
+  while (at + 16 <= good.size()) {
+    const auto index = static_cast<unsigned char>(good[at]) | static_cast<unsigned char>(good[at + 1]) << 8;
+    std::uint64_t size = 0;
+    for (int b = 7; b >= 0; --b) size = size << 8 | static_cast<unsigned char>(good[at + 8 + b]);
+    if (index == 0) {
+      free_at = at;
+      break;
+    }
+    at += 16 + (size + 7) / 8 * 8;
+  }
+  ASSERT_GT(free_at, gcol);
+  auto corrupted = [&](std::size_t where, std::uint64_t size) {  // the object's declared size set to `size`
+    std::string b = good;
+    for (int i = 0; i < 8; ++i) b[where + 8 + i] = static_cast<char>(size >> (8 * i) & 0xff);
+    std::ofstream(dir.file("bad.h5"), std::ios::binary | std::ios::trunc) << b;
+    return b;
+  };
+  for (const auto& [where, value, what] : {std::tuple<std::size_t, std::uint64_t, const char*>{free_at, 0, "free space"},
+                                           {free_at, 8, "free space"},
+                                           {free_at, 1 << 20, "free space"},
+                                           {gcol + 16, 1 << 20, "object 1 "}}) {
+    const std::string bad = corrupted(where, value);
+    const std::string from_file = refusal([&] { readPrimitives(dir.file("bad.h5")); });
+    const std::string from_image = refusal([&] { readPrimitives(FileImage{bad.data(), bad.size(), "image.h5"}); });
+    EXPECT_NE(from_file.find("bad.h5"), std::string::npos) << from_file;
+    EXPECT_NE(from_file.find(what), std::string::npos) << from_file;
+    EXPECT_NE(from_image.find("image.h5"), std::string::npos) << from_image;
+    EXPECT_NE(from_image.find("global heap"), std::string::npos) << from_image;
+  }
 }
 
 TEST(Validation, SimLogsAreCheckedOnOpenAndOnEveryRead) {
