@@ -15,12 +15,19 @@ DEBS = cmake make g++ pkg-config libeigen3-dev coinor-libipopt-dev libopenblas0-
 # (a node and npm already on PATH will do, e.g. a newer Node.js; otherwise Debian's).
 DEBS += chromium $(if $(shell command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1 && echo y),,nodejs npm)
 
-.PHONY: all deps configure build demo test bench clean
+# Only for `make fuzz` (coverage-guided fuzzing with libFuzzer, fuzz/README.md).
+FUZZ_DEBS = clang-14 libclang-rt-14-dev llvm-14
+FUZZ_BUILD ?= build-fuzz
+FUZZ_TIME ?= 60
+FUZZ_TARGETS ?= yaml planner_config sim_config stack primitive arm_trajectory sim_log cli
+SANITIZE_BUILD ?= build-sanitize
+
+.PHONY: all deps fuzz-deps configure build demo test bench clean fuzz test-sanitize
 
 all: build
 
-deps:
-	@missing=""; for p in $(DEBS); do \
+# $(call install_missing,<packages>): install the missing ones as root, else print the apt-get line and stop.
+install_missing = missing=""; for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
@@ -31,6 +38,12 @@ deps:
 	    echo "Missing Debian packages. Run:"; echo "  sudo apt-get install -y$$missing"; exit 1; \
 	  fi; \
 	fi
+
+deps:
+	@$(call install_missing,$(DEBS))
+
+fuzz-deps:
+	@$(call install_missing,$(DEBS) $(FUZZ_DEBS))
 
 $(BUILD)/CMakeCache.txt:
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
@@ -72,5 +85,21 @@ demo: build
 	@echo
 	@echo "Open in a browser (works offline, no server): $(abspath $(OUT))/compare/report.html"
 
+# libFuzzer targets in their own build directory (clang-14, -fsanitize=fuzzer,address,undefined), each run for
+# FUZZ_TIME seconds from the committed corpus (fuzz/corpus/<target>); findings go to $(FUZZ_BUILD)/findings/.
+fuzz: fuzz-deps
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang-14 \
+	  -DCMAKE_CXX_COMPILER=clang++-14 -DCENTAUR_FUZZ=ON
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
+	tools/run_fuzz.sh $(FUZZ_BUILD) $(FUZZ_TIME) $(FUZZ_TARGETS)
+
+# The whole test suite built with AddressSanitizer + UndefinedBehaviorSanitizer (g++), in its own build directory.
+test-sanitize: deps
+	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCENTAUR_SANITIZE=ON
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	cd $(SANITIZE_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan.supp UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS)
+
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(FUZZ_BUILD) $(SANITIZE_BUILD)

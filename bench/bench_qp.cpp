@@ -170,7 +170,7 @@ void BM_HqpCascadeWarm(benchmark::State& state) {
 }
 BENCHMARK(BM_HqpCascadeWarm)->Unit(benchmark::kMicrosecond);
 
-// The shape of the CENTAURO stack (issue 4): x = [base twist (6); qd (39)]; feet (4 x 6 rows) / pelvis angular
+// The shape of the CENTAURO stack: x = [base twist (6); qd (39)]; feet (4 x 6 rows) / pelvis angular
 // velocity (3) / (angular momentum (3) + posture (39)), joint position and velocity limits as box bounds only.
 // Random Jacobian-like rows stand in for the model; warm, with a drifting feet target.
 void BM_HqpCentauroShapeWarm(benchmark::State& state) {

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <set>
 
@@ -22,6 +23,7 @@
 #include "cli/compare_plot.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/output_guard.hpp"
 #include "planner/arm_flywheel_problem.hpp"
 #include "data/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
@@ -162,17 +164,18 @@ std::vector<std::pair<std::string, std::string>> planJumps(const std::vector<std
   return status;
 }
 
-/// DIR/report.html: every completed run replayed in 3D with its plan as a ghost, a run selector (docs/report.md).
-std::string writeCompareReport(const std::string& dir, const std::vector<report::RunSource>& runs) {
-  const std::string path = (fs::path(dir) / "report.html").string();
+/// DIR/report.html (written to `path`, in the staging directory): every completed run replayed in 3D with its
+/// plan as a ghost, a run selector (docs/report.md). `shown`: the staged inputs under their final names.
+void writeCompareReport(const std::string& path, const std::vector<report::RunSource>& runs,
+                        const std::map<std::string, std::string>& shown) {
   report::ReportOptions options;
   options.title = "centaur compare: " + std::to_string(runs.size()) + " run" + (runs.size() == 1 ? "" : "s");
+  options.shown_paths = shown;
   try {
     report::writeReport(path, runs, options);
   } catch (const InputError& e) {  // our own logs and plans: a runtime failure, not the user's input
     throw RuntimeError(e.what());
   }
-  return path;
 }
 
 std::string fmt(const char* format, double v) {
@@ -181,25 +184,49 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
+/// Every file compare will write into DIR, for guardOutputs().
+std::vector<NamedPath> compareOutputs(const CompareArgs& a, bool flywheel) {
+  std::vector<std::string> names{"compare.md", "compare.json", "compare-pitch.csv", "compare-pitch.png", "report.html"};
+  if (a.primitives.empty()) {
+    names.push_back("primitives.h5");
+    for (const auto& jump : a.jumps) names.push_back("primitives." + jump + ".yaml");
+  }
+  if (flywheel) names.insert(names.end(), {"arm-flywheel.h5", "arm-flywheel.arm-flywheel.yaml"});
+  for (const auto& jump : a.jumps) {
+    for (const auto& mode : a.modes) names.insert(names.end(), {jump + "-" + mode + ".h5", jump + "-" + mode + ".config.yaml"});
+  }
+  std::vector<NamedPath> out;
+  for (const auto& n : names) out.push_back({"--out " + a.out + ":", (fs::path(a.out) / n).string()});
+  return out;
+}
+
 int runCompare(const CompareArgs& a) {
   const auto t_start = std::chrono::steady_clock::now();
   const std::vector<const sim::Scenario*> scenarios = validate(a);
-  std::vector<std::string> files;
+  const bool plan_flywheel = a.flywheel.empty() && needsFlywheel(a, scenarios);
+  guardOutputs({{"--primitives", a.primitives}, {"--flywheel", a.flywheel}}, compareOutputs(a, plan_flywheel));
+  // Everything is written into a staging directory inside DIR and moved into DIR at the end: a run that fails on
+  // bad input, an error or a signal leaves nothing behind.
+  StagedOutputs staged(a.out);
+  std::vector<std::string> files;  // staged paths; reported under their final names
 
   // 1. primitives
   std::string primitives = a.primitives;
   nlohmann::json plan_json = nlohmann::json::array();
   if (primitives.empty()) {
-    primitives = (fs::path(a.out) / "primitives.h5").string();
+    primitives = staged.path("primitives.h5");
     for (const auto& [name, status] : planJumps(a.jumps, primitives, files)) {
       plan_json.push_back({{"primitive", name}, {"status", status}});
     }
   }
   std::string flywheel = a.flywheel;
-  if (flywheel.empty() && needsFlywheel(a, scenarios)) {
-    flywheel = (fs::path(a.out) / "arm-flywheel.h5").string();
+  if (plan_flywheel) {
+    flywheel = staged.path("arm-flywheel.h5");
     plan_json.push_back({{"primitive", "arm-flywheel"}, {"status", planFlywheel(flywheel, files)}});
   }
+  const auto finalPath = [&](const std::string& path) {
+    return path.empty() ? path : staged.finalPath(fs::path(path).filename().string());
+  };
 
   // 2. the runs
   struct Pair {
@@ -209,7 +236,7 @@ int runCompare(const CompareArgs& a) {
   std::vector<sim::BatchRun> runs;
   for (std::size_t j = 0; j < a.jumps.size(); ++j) {
     for (const auto& mode : a.modes) {
-      Pair p{a.jumps[j], mode, (fs::path(a.out) / (a.jumps[j] + "-" + mode + ".h5")).string()};
+      Pair p{a.jumps[j], mode, staged.path(a.jumps[j] + "-" + mode + ".h5")};
       sim::BatchRun r;
       r.label = p.jump + "/" + mode;
       r.scenario = p.jump;
@@ -256,7 +283,7 @@ int runCompare(const CompareArgs& a) {
     const bool ok = r.status == sim::BatchResult::Status::Completed;
     bad_input = bad_input || r.status == sim::BatchResult::Status::BadInput;
     failed = failed || !ok;
-    rows.push_back(sim::makeCompareRow(pairs[i].jump, pairs[i].mode, r, ok ? pairs[i].log : ""));
+    rows.push_back(sim::makeCompareRow(pairs[i].jump, pairs[i].mode, r, ok ? finalPath(pairs[i].log) : ""));
     if (!ok) continue;
     files.insert(files.end(), r.summary.files.begin(), r.summary.files.end());
     for (const auto& f : r.summary.files) files.push_back(sim::configPathFor(f));
@@ -279,10 +306,16 @@ int runCompare(const CompareArgs& a) {
     panels[panel].curves.push_back(
         {static_cast<int>(names.size()) + 1, pairs[i].mode + " (" + r.summary.outcome + ")", modeColour(pairs[i].mode)});
   }
-  const std::string md_path = (fs::path(a.out) / "compare.md").string();
-  const std::string json_path = (fs::path(a.out) / "compare.json").string();
-  const std::string csv_path = (fs::path(a.out) / "compare-pitch.csv").string();
-  const std::string png_path = (fs::path(a.out) / "compare-pitch.png").string();
+  if (bad_input) {  // nothing is written: the staging directory goes with its contents
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      if (results[i].status != sim::BatchResult::Status::BadInput) continue;
+      throw InputError(results[i].error + " (in run " + runs[i].label + "; nothing was written)");
+    }
+  }
+  const std::string md_path = staged.path("compare.md");
+  const std::string json_path = staged.path("compare.json");
+  const std::string csv_path = staged.path("compare-pitch.csv");
+  const std::string png_path = staged.path("compare-pitch.png");
   const std::string table = sim::compareMarkdown(rows);
   const nlohmann::json runs_json = sim::compareJson(rows);
   writeTextFileAtomic(md_path, "# centaur compare: jumps x upper-body stabilizers\n\n" + table +
@@ -290,7 +323,7 @@ int runCompare(const CompareArgs& a) {
                                    "w_R_imu). Max torque ratio: peak |tau| / effort limit. Real-time factor: "
                                    "simulated time / wall time of the loop.\n"
                                    "Plot: compare-pitch.png (data: compare-pitch.csv). Logs: <jump>-<mode>.h5.\n");
-  writeTextFileAtomic(json_path, runs_json.dump(2) + "\n");
+  writeTextFileAtomic(json_path, runs_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   files.push_back(md_path);
   files.push_back(json_path);
   if (!series.empty()) {
@@ -298,8 +331,17 @@ int runCompare(const CompareArgs& a) {
     files.push_back(csv_path);
     plotPitchPanels(csv_path, panels, png_path);
     files.push_back(png_path);
-    files.push_back(writeCompareReport(a.out, report_runs));
+    std::map<std::string, std::string> shown;
+    for (const report::RunSource& r : report_runs) {
+      for (const std::string& p : {r.log_path, r.primitive_path}) shown[p] = finalPath(p);
+    }
+    if (!a.primitives.empty()) shown.erase(a.primitives);  // the user's file, not staged
+    const std::string report_path = staged.path("report.html");
+    writeCompareReport(report_path, report_runs, shown);
+    files.push_back(report_path);
   }
+  staged.commit();
+  for (auto& f : files) f = finalPath(f);
   const double total_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 
   // 4. report
@@ -314,12 +356,12 @@ int runCompare(const CompareArgs& a) {
     j["wall_time_s"] = total_wall;
     j["runs_wall_time_s"] = runs_wall;
     j["threads"] = threads;
-    j["primitives"] = primitives;
-    j["flywheel"] = flywheel.empty() ? nlohmann::json(nullptr) : nlohmann::json(flywheel);
+    j["primitives"] = a.primitives.empty() ? finalPath(primitives) : primitives;
+    j["flywheel"] = flywheel.empty() ? nlohmann::json(nullptr)
+                                     : nlohmann::json(a.flywheel.empty() ? finalPath(flywheel) : flywheel);
     j["planned"] = plan_json;
-    printJsonLine(j.dump());
+    printJsonLine(j);
   }
-  if (bad_input) return kExitBadInput;
   return failed ? kExitRuntime : kExitOk;
 }
 

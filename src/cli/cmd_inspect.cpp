@@ -148,6 +148,10 @@ int runInspect(const InspectArgs& a) {
     prims.push_back(data::readPrimitive(a.file, a.primitive));
   } else {
     prims = data::readPrimitives(a.file);
+    if (prims.empty()) {
+      throw InputError(a.file + ": the file holds no primitive (no lower-body primitive group; an arm trajectory "
+                                "is read by the ocp stabilizer, not by inspect)");
+    }
   }
   std::cout << a.file << ": " << prims.size() << " primitive" << (prims.size() == 1 ? "" : "s") << "\n";
   nlohmann::json list = nlohmann::json::array();
@@ -158,7 +162,7 @@ int runInspect(const InspectArgs& a) {
     list.push_back(toJson(p, s));
   }
   std::cout << std::flush;
-  if (a.json) printJsonLine(nlohmann::json{{"file", a.file}, {"primitives", list}}.dump());
+  if (a.json) printJsonLine(nlohmann::json{{"file", a.file}, {"primitives", list}});
   return kExitOk;
 }
 

@@ -15,11 +15,13 @@
 #include "cli/command.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/output_guard.hpp"
 #include "planner/arm_flywheel_problem.hpp"
 #include "data/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
 #include "data/primitive_io.hpp"
 #include "data/primitive_summary.hpp"
+#include "model/chain_from_mjcf.hpp"
 
 namespace centaur::cli {
 namespace {
@@ -81,6 +83,8 @@ nlohmann::json solveJson(const std::string& name, const data::SolveInfo& info) {
 // The arm-flywheel trajectory (stabilizer 3): same flags, exit codes and sidecar as the jumps.
 int runArmPlan(const PlanArgs& a) {
   const planner::ArmFlywheelConfig cfg = planner::loadArmFlywheelConfig(a.config, a.overrides);
+  guardOutputs({{"--config", a.config}, {"model.mjcf", cfg.mjcf.empty() ? model::centauroMjcfPath() : cfg.mjcf}},
+               {{"--out", a.out}, {"the effective configuration", sidecarPath(a.out, "arm-flywheel")}});
   if (!a.quiet) std::fprintf(stderr, "planning arm-flywheel (%s) ...\n", cfg.source.c_str());
   const planner::ArmFlywheelProblem problem(cfg);
   const planner::SolveResult result = problem.solve(!a.quiet);
@@ -106,7 +110,7 @@ int runArmPlan(const PlanArgs& a) {
     j["variables"] = problem.ocp().numVariables();
     j["constraints"] = problem.ocp().numConstraints();
     j["out"] = a.out;
-    printJsonLine(j.dump());
+    printJsonLine(j);
   }
   return ok ? kExitOk : kExitNotConverged;
 }
@@ -117,6 +121,7 @@ int runPlan(const PlanArgs& a) {
     return runArmPlan(a);
   }
   const planner::JumpConfig cfg = planner::loadJumpConfig(a.primitive, a.config, a.overrides);
+  guardOutputs({{"--config", a.config}}, {{"--out", a.out}, {"the effective configuration", sidecarPath(a.out, a.primitive)}});
   if (!a.quiet) std::fprintf(stderr, "planning %s (%s) ...\n", a.primitive.c_str(), cfg.source.c_str());
   const planner::JumpProblem problem(cfg);
   if (!a.quiet) {
@@ -147,7 +152,7 @@ int runPlan(const PlanArgs& a) {
     j["variables"] = problem.ocp().numVariables();
     j["constraints"] = problem.ocp().numConstraints();
     j["out"] = a.out;
-    printJsonLine(j.dump());
+    printJsonLine(j);
   }
   return ok ? kExitOk : kExitNotConverged;
 }

@@ -12,6 +12,8 @@
 #include "cli/command.hpp"
 #include "cli/plot_primitive.hpp"
 #include "common/error.hpp"
+#include "common/excerpt.hpp"
+#include "common/output_guard.hpp"
 #include "data/primitive_io.hpp"
 
 namespace centaur::cli {
@@ -26,11 +28,23 @@ struct PlotArgs {
   bool json = false;
 };
 
+/// A primitive's name as part of a file name: characters other than letters, digits, '.', '_' and '-' become
+/// '_' (a group name from a file is untrusted), at most 100 of them.
+std::string fileNamePart(const std::string& name) {
+  std::string out;
+  for (char c : name.substr(0, 100)) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+                    c == '_' || c == '-';
+    out += ok ? c : '_';
+  }
+  return out;
+}
+
 std::string outputFor(const std::string& out, const std::string& name, bool several) {
   if (!several) return out;
   const std::filesystem::path p(out);
   const std::string ext = p.has_extension() ? p.extension().string() : std::string(".png");
-  return (p.parent_path() / (p.stem().string() + "-" + name + ext)).string();
+  return (p.parent_path() / (p.stem().string() + "-" + fileNamePart(name) + ext)).string();
 }
 
 int runPlot(const PlotArgs& a) {
@@ -47,15 +61,22 @@ int runPlot(const PlotArgs& a) {
   options.width_px = a.width;
   options.height_px = a.height;
 
-  nlohmann::json outputs = nlohmann::json::array();
+  // Every primitive is read (and so validated) and every output named before the first PNG is written.
+  std::vector<data::Primitive> prims;
+  std::vector<NamedPath> pngs;
   for (const std::string& name : names) {
-    const data::Primitive p = data::readPrimitive(a.file, name);
-    const std::string png = outputFor(out, name, names.size() > 1);
-    plotPrimitive(p, png, options);
-    std::cout << "wrote " << png << " (" << name << ")" << std::endl;
-    outputs.push_back({{"primitive", name}, {"png", png}});
+    prims.push_back(data::readPrimitive(a.file, name));
+    pngs.push_back({names.size() > 1 ? "the plot of '" + excerpt(name) + "'" : "--out", outputFor(out, name, names.size() > 1)});
   }
-  if (a.json) printJsonLine(nlohmann::json{{"file", a.file}, {"outputs", outputs}}.dump());
+  guardOutputs({{"the primitive file", a.file}}, pngs);
+
+  nlohmann::json outputs = nlohmann::json::array();
+  for (std::size_t i = 0; i < prims.size(); ++i) {
+    plotPrimitive(prims[i], pngs[i].path, options);
+    std::cout << "wrote " << pngs[i].path << " (" << excerpt(prims[i].name) << ")" << std::endl;
+    outputs.push_back({{"primitive", prims[i].name}, {"png", pngs[i].path}});
+  }
+  if (a.json) printJsonLine(nlohmann::json{{"file", a.file}, {"outputs", outputs}});
   return kExitOk;
 }
 

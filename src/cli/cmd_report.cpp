@@ -13,6 +13,7 @@
 
 #include "cli/command.hpp"
 #include "common/error.hpp"
+#include "common/output_guard.hpp"
 #include "report/report.hpp"
 
 namespace centaur::cli {
@@ -32,6 +33,9 @@ int runReport(const ReportArgs& a) {
   }
   std::string out = a.out;
   if (out.empty()) out = std::filesystem::path(a.logs.empty() ? a.primitive : a.logs.front()).replace_extension(".html");
+  std::vector<NamedPath> inputs{{"--primitive", a.primitive}, {"--model", a.model}};
+  for (const std::string& log : a.logs) inputs.push_back({"the log", log});
+  guardOutputs(inputs, {{"--out", out}});
   report::ReportOptions options;
   options.title = a.title;
   options.pose_rate_hz = a.rate;
@@ -63,7 +67,9 @@ const Registrar registrar{Command{
       sub.add_option("--primitive-name", a->primitive_name,
                      "the primitive of the file to use (default: the one named like the log's scenario)");
       sub.add_option("--out", a->out, "the HTML file (default: the first input with extension .html)");
-      sub.add_option("--rate", a->rate, "body poses per second of replay [10, 1000] Hz")->capture_default_str();
+      sub.add_option("--rate", a->rate, "body poses per second of replay [10, 1000] Hz")
+          ->check(finiteRange(10.0, 1000.0))
+          ->capture_default_str();
       sub.add_option("--model", a->model, "MJCF to draw (default: the model the log's run simulated)");
       sub.add_option("--title", a->title, "page title");
       sub.add_flag("--json", a->json, "print one JSON object {file, bytes, runs, frames, generation_s} last");

@@ -75,7 +75,7 @@ const Registrar registrar{Command{
           ->check(CLI::IsMember({"stand", "squat-jump", "half-squat-jump"}));
       sub.add_flag("--realtime", a->realtime, "pace robot time to the wall clock (1x; the default)");
       sub.add_flag("--lockstep", a->lockstep, "advance one period when the command for the last state arrives");
-      sub.add_option("--duration", a->duration, "simulated time [s]")->check(CLI::Range(0.001, 3600.0));
+      sub.add_option("--duration", a->duration, "simulated time [s]")->check(finiteRange(0.001, 3600.0));
       sub.add_option("--config", a->node.config_file, "configuration (YAML; docs/sim.md, docs/middleware.md)")
           ->check(CLI::ExistingFile);
       sub.add_option("--set", a->node.overrides, "override a configuration key (repeatable)");

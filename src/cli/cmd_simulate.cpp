@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -39,6 +40,10 @@ nlohmann::json toJson(const sim::RunSummary& s, const std::string& scenario) {
   j["wall_time_s"] = s.wall_time_s;
   j["period_time_us_median"] = s.period_time_us_median;
   j["tick_time_us_median"] = s.tick_time_us_median;
+  j["tick_time_us_p99"] = s.tick_time_us_p99;
+  j["control_period_us"] = s.control_period_us;
+  j["ticks_over_period"] = s.ticks_over_period;
+  j["tick_over_budget"] = s.tickOverBudget();
   j["video_frames"] = s.video_frames;
   j["files"] = s.files;
   return j;
@@ -110,10 +115,16 @@ int runSimulate(const sim::Scenario& scenario, const SimulateArgs& a) {
             << " s; pelvis drift " << s.pelvis_drift_m * 1000.0 << " mm, peak pitch " << s.peak_pitch_deg
             << " deg, peak roll " << s.peak_roll_deg << " deg, real-time factor " << s.real_time_factor << "\n";
   for (const auto& f : s.files) std::cout << "wrote " << f << "\n";
+  if (s.tickOverBudget()) {
+    std::fprintf(stderr,
+                 "warning: the controller's tick took %.0f us (median; p99 %.0f us, %ld ticks over), more than the "
+                 "%.0f us control period: this controller (stack) cannot run at its rate on this machine\n",
+                 s.tick_time_us_median, s.tick_time_us_p99, s.ticks_over_period, s.control_period_us);
+  }
   if (a.json) {
     nlohmann::json j = toJson(s, scenario.name);
     if (!selected.is_null()) j["grid_point"] = selected;
-    printJsonLine(j.dump());
+    printJsonLine(j);
   }
   return kExitOk;  // the run completed; a fall is an outcome (in the summary), not a failure
 }
@@ -127,14 +138,14 @@ const Registrar registrar{Command{
       for (const auto& scenario : sim::scenarios()) {
         CLI::App* s = sub.add_subcommand(scenario.name, scenario.help);
         s->add_option("--duration", args->duration, "simulated time [s] (overrides the configuration)")
-            ->check(CLI::Range(0.001, 3600.0));
+            ->check(finiteRange(0.001, 3600.0));
         s->add_option("--config", args->config, "scenario configuration (YAML; docs/sim.md)")
             ->check(CLI::ExistingFile);
         s->add_option("--set", args->sets, "override a configuration key: --set world.friction=0.8 (repeatable)");
         s->add_option("--out", args->out, "HDF5 log of the run");
         s->add_option("--video", args->video, "render the run to an mp4 (offscreen, render.fps)");
         s->add_option("--snapshot", args->snapshot, "render one frame to a PNG (with --at)");
-        s->add_option("--at", args->at, "snapshot time [s]")->check(CLI::Range(0.0, 3600.0));
+        s->add_option("--at", args->at, "snapshot time [s]")->check(finiteRange(0.0, 3600.0));
         s->add_flag("--json", args->json, "print one JSON summary object as the last line of stdout");
         const bool replays_primitive = std::any_of(scenario.options.begin(), scenario.options.end(),
                                                    [](const sim::ScenarioOption& o) { return o.name == "primitive"; });

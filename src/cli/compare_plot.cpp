@@ -3,31 +3,21 @@
 #include <filesystem>
 #include <sstream>
 
-#include "cli/plot_primitive.hpp"  // runGnuplot, gnuplotAvailable
-#include "common/atomic_file.hpp"
+#include "cli/gnuplot.hpp"
 #include "common/error.hpp"
+#include "common/excerpt.hpp"
 
 namespace centaur::cli {
 
 namespace {
 
-/// `s` as a gnuplot single-quoted string (the terminal is noenhanced, so only quotes need care).
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'') {
-      out += "''";
-    } else if (c == '\n' || c == '\r') {
-      out += ' ';
-    } else {
-      out += c;
-    }
-  }
-  return out + "'";
-}
+/// The data file of the plot in gnuplot's working directory.
+const char* const kCsv = "pitch.csv";
 
-std::string buildScript(const std::string& csv, const std::vector<PitchPanel>& panels, const std::string& png,
-                        const PitchPlotOptions& o) {
+/// Text shown in the figure (the terminal is noenhanced): bounded and escaped.
+std::string quoted(const std::string& s) { return gnuplotQuote(excerpt(s, 120)); }
+
+std::string buildScript(const std::vector<PitchPanel>& panels, const PitchPlotOptions& o) {
   const int n = static_cast<int>(panels.size());
   // Layout in pixels, converted to screen fractions: a band for the figure title, then per panel a band for
   // its title, the plot, and a band for the time axis label.
@@ -36,7 +26,7 @@ std::string buildScript(const std::string& csv, const std::vector<PitchPanel>& p
   auto screenY = [&](int px_from_top) { return 1.0 - static_cast<double>(px_from_top) / height_px; };
   std::ostringstream g;
   g << "set terminal pngcairo size " << o.width_px << "," << height_px << " noenhanced font 'Sans,11'\n"
-    << "set output " << quoted(png) << "\n"
+    << "set output " << gnuplotQuote(kGnuplotPng) << "\n"
     << "set datafile separator comma\n"
     << "set grid xtics ytics lc rgb '#dddddd' lw 1 dt 1\n"
     << "set xzeroaxis lt -1 lw 1 lc rgb '#888888'\n"
@@ -63,7 +53,7 @@ std::string buildScript(const std::string& csv, const std::vector<PitchPanel>& p
     g << "plot ";
     for (std::size_t c = 0; c < panel.curves.size(); ++c) {
       const PitchCurve& cv = panel.curves[c];
-      g << (c ? ", " : "") << quoted(csv) << " skip 1 u 1:" << cv.column << " w l lw 2 lc rgb " << quoted(cv.colour)
+      g << (c ? ", " : "") << gnuplotQuote(kCsv) << " skip 1 u 1:" << cv.column << " w l lw 2 lc rgb " << quoted(cv.colour)
         << " t " << quoted(cv.label);
     }
     g << "\n";
@@ -90,24 +80,7 @@ void plotPitchPanels(const std::string& csv_path, const std::vector<PitchPanel>&
       if (c.column < 2) throw InputError("pitch plot " + png_path + ": curve '" + c.label + "' has column < 2");
     }
   }
-  ensureParentDirectory(png_path);
-  const std::string png_tmp = temporaryPathFor(png_path);
-  // Absolute paths: gnuplot runs in its own temporary directory.
-  const std::string csv_abs = std::filesystem::absolute(csv_path).string();
-  const std::string png_abs = std::filesystem::absolute(png_tmp).string();
-  try {
-    runGnuplot(buildScript(csv_abs, panels, png_abs, options));
-  } catch (...) {
-    removeFileIfExists(png_tmp);
-    throw;
-  }
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(png_tmp, ec);
-  if (ec || size < 8) {
-    removeFileIfExists(png_tmp);
-    throw RuntimeError("gnuplot did not draw " + png_path);
-  }
-  commitFile(png_tmp, png_path);
+  renderPng(buildScript(panels, options), {{kCsv, "", csv_path}}, png_path);
 }
 
 }  // namespace centaur::cli

@@ -1,56 +1,44 @@
 // centaur: plan, inspect, plot, simulate, compare and benchmark agile actions of CENTAURO.
+// The single place where errors become exit codes (common/error.hpp) and where the cleanup of temporaries on
+// signals and exit is installed (common/cleanup.hpp).
 #include <cstdio>
 #include <iostream>
-#include <memory>
+#include <new>
 
-#include "cli/command.hpp"
+#include "cli/app.hpp"
+#include "common/cleanup.hpp"
 #include "common/error.hpp"
+#include "common/excerpt.hpp"
 
-namespace centaur::cli {
 
-std::vector<Command>& commands() {
-  static std::vector<Command> registry;
-  return registry;
+namespace {
+int report(const char* what, int code) {
+  // Messages quote inputs; no control character of theirs reaches the terminal.
+  std::cerr << "error: " << centaur::printable(what) << std::endl;
+  return code;
 }
-
-void printJsonLine(const std::string& json) {
-  std::fflush(stderr);
-  std::cout << json << std::endl;
-}
-
-}  // namespace centaur::cli
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace centaur;
-  CLI::App app{"centaur: agile actions for a centaur-type humanoid (plan offline, replay online at 1 kHz)"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "centaur 0.1.0");
-  std::vector<std::pair<CLI::App*, std::function<int()>>> actions;
-  std::vector<std::shared_ptr<std::function<int()>>> slots;
-  for (auto& c : cli::commands()) {
-    CLI::App* sub = app.add_subcommand(c.name, c.help);
-    auto slot = std::make_shared<std::function<int()>>(c.setup(*sub));
-    actions.emplace_back(sub, *slot);
-  }
+  cleanup::install();
+  cli::CliApp cli;
+  std::function<int()> action;
   try {
-    app.parse(argc, argv);
+    action = cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
+    const int rc = cli.app().exit(e);
     return rc == 0 ? 0 : kExitBadInput;
   }
   try {
-    for (auto& [sub, action] : actions) {
-      if (sub->parsed()) return action();
-    }
+    return action();
   } catch (const InputError& e) {
-    std::cerr << "error: " << e.what() << std::endl;
-    return kExitBadInput;
+    return report(e.what(), kExitBadInput);
   } catch (const RuntimeError& e) {
-    std::cerr << "error: " << e.what() << std::endl;
-    return kExitRuntime;
+    return report(e.what(), kExitRuntime);
+  } catch (const std::bad_alloc&) {
+    return report("out of memory", kExitRuntime);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << std::endl;
-    return kExitRuntime;
+    return report(e.what(), kExitRuntime);
   }
-  return kExitFailure;
 }

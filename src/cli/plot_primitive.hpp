@@ -1,10 +1,12 @@
 #pragma once
 // Plot a lower-body primitive like the lower plots of the paper's Fig. 3: three stacked panels over time
 // (contact forces, feet positions, waist position) with flight and partial-support phases shaded.
-// Rendering is done by gnuplot (Debian package gnuplot-nox, terminal pngcairo) in a child process; the PNG
-// is written to a temporary sibling and renamed, so a failed plot never leaves a half-written image.
+// Rendering is done by gnuplot (cli/gnuplot.hpp: data through a data file, text from the file escaped, no user
+// path in the script); the PNG is written to a temporary sibling and renamed, so a failed plot never leaves a
+// half-written image.
 #include <string>
 
+#include "cli/gnuplot.hpp"
 #include "data/primitive.hpp"
 
 namespace centaur::cli {
@@ -14,13 +16,6 @@ struct PlotOptions {
   int height_px = 1300;  ///< image height [px]
   std::string title;     ///< figure title; empty = "<name>: planned primitive (<status>, <iterations> it)"
 };
-
-/// True if a `gnuplot` executable is on PATH.
-bool gnuplotAvailable();
-
-/// Run gnuplot on `script` (text) in a fresh temporary directory; returns what gnuplot printed (stdout and
-/// stderr). Throws RuntimeError if gnuplot is missing ("apt-get install gnuplot-nox") or exits non-zero.
-std::string runGnuplot(const std::string& script);
 
 /// Draw `p` into the PNG file `png_path` (parent directories created). Throws RuntimeError on failure.
 void plotPrimitive(const data::Primitive& p, const std::string& png_path, const PlotOptions& options = {});

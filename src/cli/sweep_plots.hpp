@@ -1,8 +1,8 @@
 #pragma once
 // The figures of a sweep. Heatmaps: success rate over two planner axes, one panel per (jump, mode), each cell coloured
 // red (0) to green (1) and labelled successes/runs; cells whose plans did not converge are grey ("no plan").
-// Drawn by gnuplot from a private copy of the data file (cli/private_gnuplot.hpp): the script holds only our own
-// text (axis keys and values, checked by the spec to be [A-Za-z0-9_.-]; jump and mode names).
+// Drawn by gnuplot from a private copy of the data file (cli/gnuplot.hpp, renderPng): the script names only that
+// copy and the PNG, and every label it shows goes through gnuplotQuote.
 #include <string>
 
 #include "sweep/summary.hpp"

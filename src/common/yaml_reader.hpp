@@ -1,9 +1,16 @@
 #pragma once
 // Strict YAML reading: every key must be known, every value inside its documented range.
 // A reader wraps one mapping; each get() marks its key as consumed, finish() rejects the rest.
-// Errors name the file, the full dotted key and the allowed range (InputError, exit code 2).
+// Errors name the file, the full dotted key and the allowed range (InputError, exit code 2); values and keys
+// are quoted as bounded excerpts (common/excerpt.hpp).
+//
+// Loading is strict too (loadYamlFile, loadYamlString, applyOverride, every configuration of the project goes
+// through them): one document, a mapping at the root, unique plain keys (no duplicate, null, alias or
+// complex key), and the limits of YamlLimits below, all checked in one streaming pass over the parser's events
+// before any tree is built, so an oversized document is refused in time linear in its size.
 #include <yaml-cpp/yaml.h>
 
+#include <cstddef>
 #include <set>
 #include <string>
 #include <vector>
@@ -13,6 +20,14 @@
 #include "common/error.hpp"
 
 namespace centaur {
+
+/// The one place for the size limits of YAML input (configuration files, stacks, --set values).
+struct YamlLimits {
+  static constexpr std::size_t kMaxBytes = 1 << 20;  ///< a file or text; the shipped configurations are < 8 KiB
+  static constexpr std::size_t kMaxNodes = 10000;    ///< keys, values and list items, aliases expanded
+  static constexpr int kMaxDepth = 64;               ///< nesting of mappings and lists; --set key segments
+  static constexpr std::size_t kMaxUnknownKeysNamed = 5;  ///< finish() names the first ones, then counts
+};
 
 class YamlReader {
  public:
@@ -42,7 +57,7 @@ class YamlReader {
   /// The raw node of a key (marked consumed), for sequences of mappings.
   YAML::Node raw(const std::string& key);
 
-  /// Throws InputError naming every key that was never read.
+  /// Throws InputError naming the first keys that were never read (and how many there are).
   void finish() const;
 
   const std::string& file() const { return file_; }
@@ -60,11 +75,15 @@ class YamlReader {
 /// Throws InputError for a malformed assignment.
 void applyOverride(YAML::Node& root, const std::string& assignment);
 
-/// Load a YAML file; InputError (naming the file, line and column) if missing or malformed.
+/// Load a YAML configuration file (a mapping; empty = empty mapping); InputError naming the file (and the line
+/// and column) if it is missing, not a regular file, larger than the limits, malformed or not strict (above).
 YAML::Node loadYamlFile(const std::string& path);
 
-/// Load YAML from text (embedded defaults); `label` names it in messages.
+/// Load a YAML mapping from text (embedded defaults, a stack given as text); `label` names it in messages.
 YAML::Node loadYamlString(const std::string& text, const std::string& label);
+
+/// Parse one YAML value of any kind (a --set value) with the same strictness and limits.
+YAML::Node loadYamlValue(const std::string& text, const std::string& label);
 
 /// Deep merge: every key of `over` replaces or extends the one in `base` (mappings merged recursively).
 YAML::Node mergeYaml(const YAML::Node& base, const YAML::Node& over);

@@ -1,5 +1,5 @@
 #pragma once
-// Wheel contact detection from measured joint torques (issue 4 item 4).
+// Wheel contact detection from measured joint torques.
 //
 // 1. Generalized-momentum observer (De Luca et al.): with p = M(q) v and M vdot + C v + g = S' tau + tau_ext,
 //      pdot = S' tau + C' v - g + tau_ext      (since Mdot = C + C'),

@@ -1,5 +1,5 @@
 #pragma once
-// Contact force distribution for the four wheels (issue 4 item 3), a small QP on our dense QP solver.
+// Contact force distribution for the four wheels, a small QP on our dense QP solver.
 //
 // Given the robot's current state (a RobotModel the caller has update()d with q, v), desired generalized
 // accelerations vdot_d (nv) and desired wheel forces F_d (3 x 4, world frame, force exerted BY the ground

@@ -1,5 +1,5 @@
 #pragma once
-// Replay of a lower-body primitive (issue 5 item 1): the planner's 1 kHz samples turned into the references
+// Replay of a lower-body primitive: the planner's 1 kHz samples turned into the references
 // of the whole-body controller at any time t since the primitive's start.
 //
 //   b_p_wheel   pelvis -> wheel-centre positions r_C (the template's point foot is the wheel centre and the

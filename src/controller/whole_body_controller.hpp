@@ -1,5 +1,5 @@
 #pragma once
-// The 1 kHz whole-body tick (issue 4 item 5): velocity-level hierarchical IK + contact force distribution.
+// The 1 kHz whole-body tick: velocity-level hierarchical IK + contact force distribution.
 //
 // Every tick (period dt):
 //   1. input check: any NaN/Inf in the RobotState -> safe mode (below);

@@ -3,6 +3,7 @@
 
 #include <hdf5.h>
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <vector>
@@ -152,8 +153,29 @@ void writeArmTrajectory(const std::string& path, const ArmTrajectory& tr, bool a
   commitFile(tmp, path);
 }
 
-ArmTrajectory readArmTrajectory(const std::string& path, const std::string& name) {
-  const R r(path, "an arm trajectory written by `centaur plan arm-flywheel`");
+namespace {
+
+constexpr hsize_t kMaxArmSamples = 1000001;  // 100 s at 0.1 ms: beyond any sample_dt and period the planner takes
+
+/// Bounds of the OCP: finite, lower < upper where they pair up, limits > 0.
+void checkBounds(const R& r, const std::string& name, const ArmTrajectory& tr) {
+  auto finite = [&](const char* attr, const Eigen::VectorXd& v) { r.requireFinite(name + "@" + attr, v); };
+  finite("q_min", tr.q_min), finite("q_max", tr.q_max), finite("qd_max", tr.qd_max), finite("tau_max", tr.tau_max);
+  finite("q_min_model", tr.q_min_model), finite("q_max_model", tr.q_max_model);
+  finite("qd_max_model", tr.qd_max_model), finite("tau_max_model", tr.tau_max_model);
+  r.requireFinite(name + "@momentum_point", tr.momentum_point.data(), 3, 1);
+  r.requireFinite(name + "@ee_box_min", tr.ee_box_min.data(), 3, 1);
+  r.requireFinite(name + "@ee_box_max", tr.ee_box_max.data(), 3, 1);
+  for (int j = 0; j < 7; ++j) {
+    if (!(tr.q_min[j] < tr.q_max[j])) r.fail(name + "@q_min", "must be below q_max for every joint");
+    if (!(tr.q_min_model[j] < tr.q_max_model[j])) r.fail(name + "@q_min_model", "must be below q_max_model");
+    if (!(tr.qd_max[j] > 0.0 && tr.tau_max[j] > 0.0 && tr.qd_max_model[j] > 0.0 && tr.tau_max_model[j] > 0.0)) {
+      r.fail(name + "@qd_max", "velocity and torque limits must be > 0");
+    }
+  }
+}
+
+ArmTrajectory readTrajectory(const R& r, const std::string& name) {
   if (!r.exists(r.file(), name)) r.fail(name, "no such group (an arm trajectory)");
   Id g(H5Gopen2(r.file(), name.c_str(), H5P_DEFAULT), H5Gclose);
   if (!g.valid() || H5Iget_type(g.get()) != H5I_GROUP) r.fail(name, "not a group");
@@ -165,20 +187,34 @@ ArmTrajectory readArmTrajectory(const std::string& path, const std::string& name
   for (std::string item; std::getline(ss, item, ',');) tr.joint_names.push_back(item);
   if (tr.joint_names.size() != 7) r.fail(name + "@joint_names", "expected 7 comma-separated joint names");
   tr.period = r.numbers(gid, name, "period", 1)[0];
+  if (!(tr.period >= 0.01 && tr.period <= 100.0)) r.fail(name + "@period", "must be a number in [0.01, 100] s");
+  const hsize_t N = r.length(gid, name + "/t", "t", 2, kMaxArmSamples);
   tr.t = r.vector(gid, name + "/t", "t");
-  const auto N = static_cast<hsize_t>(tr.t.size());
-  if (N < 2) r.fail(name + "/t", "needs at least 2 samples");
-  tr.q = r.matrix(gid, name + "/q", "q", N, 7);
-  tr.qd = r.matrix(gid, name + "/qd", "qd", N, 7);
-  tr.qdd = r.matrix(gid, name + "/qdd", "qdd", N, 7);
-  tr.tau = r.matrix(gid, name + "/tau", "tau", N, 7);
-  tr.h_ang = r.matrix(gid, name + "/h_ang", "h_ang", N, 3);
-  tr.ee_pos = r.matrix(gid, name + "/ee_pos", "ee_pos", N, 3);
+  r.requireTimeAxis(name + "/t", tr.t, {2, true, true, 1e-5, 1.0});
+  if (std::abs(tr.t[tr.t.size() - 1] - tr.period) > 1e-6 * (tr.t[1] - tr.t[0])) {
+    r.fail(name + "/t", "ends at " + std::to_string(tr.t[tr.t.size() - 1]) + " s, not at the period " +
+                            std::to_string(tr.period) + " s");
+  }
+  auto matrix = [&](const std::string& key, const char* dataset, hsize_t rows, hsize_t cols) {
+    RowMatrix m = r.matrix(g.get(), key, dataset, rows, cols);
+    r.requireFinite(key, m);
+    return m;
+  };
+  tr.q = matrix(name + "/q", "q", N, 7);
+  tr.qd = matrix(name + "/qd", "qd", N, 7);
+  tr.qdd = matrix(name + "/qdd", "qdd", N, 7);
+  tr.tau = matrix(name + "/tau", "tau", N, 7);
+  tr.h_ang = matrix(name + "/h_ang", "h_ang", N, 3);
+  tr.ee_pos = matrix(name + "/ee_pos", "ee_pos", N, 3);
   if (r.exists(gid, "knots")) {
     const Id k = r.openGroup(gid, name + "/knots", "knots");
+    const hsize_t nk = r.length(k.get(), name + "/knots/t", "t", 2, kMaxArmSamples);
     tr.knot_t = r.vector(k.get(), name + "/knots/t", "t");
-    tr.knot_x = r.matrix(k.get(), name + "/knots/x", "x", static_cast<hsize_t>(tr.knot_t.size()), 14);
-    tr.knot_u = r.matrix(k.get(), name + "/knots/u", "u", 0, 7);
+    r.requireTimeAxis(name + "/knots/t", tr.knot_t, {2, true, false, 1e-6, 100.0});
+    tr.knot_x = r.matrix(k.get(), name + "/knots/x", "x", nk, 14);
+    tr.knot_u = r.matrix(k.get(), name + "/knots/u", "u", nk - 1, 7);
+    r.requireFinite(name + "/knots/x", tr.knot_x);
+    r.requireFinite(name + "/knots/u", tr.knot_u);
   }
   tr.q_min = toVec(r.numbers(gid, name, "q_min", 7));
   tr.q_max = toVec(r.numbers(gid, name, "q_max", 7));
@@ -191,14 +227,29 @@ ArmTrajectory readArmTrajectory(const std::string& path, const std::string& name
   tr.momentum_point = toVec(r.numbers(gid, name, "momentum_point", 3));
   tr.ee_box_min = toVec(r.numbers(gid, name, "ee_box_min", 3));
   tr.ee_box_max = toVec(r.numbers(gid, name, "ee_box_max", 3));
+  checkBounds(r, name, tr);
   tr.ee_frame = r.text(gid, name, "ee_frame");
   tr.solve.status = r.text(gid, name, "solve_status");
-  tr.solve.iterations = static_cast<int>(r.numbers(gid, name, "solve_iterations", 1)[0]);
+  const double iterations = r.numbers(gid, name, "solve_iterations", 1)[0];
+  if (!(iterations >= 0.0 && iterations <= 1e9)) r.fail(name + "@solve_iterations", "must be an integer >= 0");
+  tr.solve.iterations = static_cast<int>(iterations);
   tr.solve.solve_time_s = r.numbers(gid, name, "solve_time_s", 1)[0];
   tr.solve.cost = r.numbers(gid, name, "solve_cost", 1)[0];
   tr.solve.max_constraint_violation = r.numbers(gid, name, "solve_max_violation", 1)[0];
   tr.config_yaml = r.text(gid, name, "config_yaml");
   return tr;
+}
+
+const char* const kExpectedArm = "an arm trajectory written by `centaur plan arm-flywheel`";
+
+}  // namespace
+
+ArmTrajectory readArmTrajectory(const std::string& path, const std::string& name) {
+  return readTrajectory(R(path, kExpectedArm), name);
+}
+
+ArmTrajectory readArmTrajectory(const FileImage& image, const std::string& name) {
+  return readTrajectory(R(image, kExpectedArm), name);
 }
 
 }  // namespace centaur::data

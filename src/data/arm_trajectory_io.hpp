@@ -6,6 +6,7 @@
 #include <string>
 
 #include "data/arm_trajectory.hpp"
+#include "data/file_image.hpp"
 
 namespace centaur::data {
 
@@ -13,7 +14,8 @@ namespace centaur::data {
 /// other groups of an existing file are kept (a group of the same name is replaced).
 void writeArmTrajectory(const std::string& path, const ArmTrajectory& tr, bool append = false);
 
-/// Read group `name` (default "arm-flywheel").
+/// Read group `name` (default "arm-flywheel"), every dataset validated (docs/primitive-format.md, "Validation").
 ArmTrajectory readArmTrajectory(const std::string& path, const std::string& name = "arm-flywheel");
+ArmTrajectory readArmTrajectory(const FileImage& image, const std::string& name = "arm-flywheel");
 
 }  // namespace centaur::data

@@ -5,7 +5,9 @@
 //   - Writer: every failure becomes RuntimeError("cannot write <target>: <what> (HDF5: <cause>)");
 //   - Reader: every defect of a file becomes InputError("<file>: key '<dataset or attribute>': <message>")
 //     (CLI exit code 2). Files must be regular files (a FIFO, a directory or a device is refused before
-//     anything is opened), dataset shapes are checked before any element is read or allocated.
+//     anything is opened) or file images in memory (FileImage); dataset shapes are checked against the
+//     expectation and the size limits (ReadLimits) before any element is read or allocated; the checks every
+//     format shares (finite values, a time axis, unit quaternions) are here, linear in the data.
 // Strings are written as variable-length UTF-8; both variable- and fixed-length strings are read.
 // Matrices are row-major in memory and in the file (dataset dims = [rows, trailing...]).
 #include <hdf5.h>
@@ -16,6 +18,7 @@
 
 #include <Eigen/Core>
 
+#include "data/file_image.hpp"
 #include "data/row_matrix.hpp"
 
 namespace centaur::data {
@@ -126,11 +129,34 @@ struct AttributeValue {
 /// Reads any scalar/1-D numeric, scalar string or 1-D string attribute; kUnsupported otherwise.
 AttributeValue readAttribute(hid_t attr);
 
+/// "" if every global heap collection (where HDF5 keeps variable-length strings) of the file `bytes` lies within
+/// the file and holds its objects, else what is wrong. libhdf5 1.10 trusts these sizes (a corrupt collection
+/// makes it copy past its buffer: found by fuzzing, docs/reliability.md); the Reader refuses such files first.
+std::string globalHeapDefect(const unsigned char* bytes, std::size_t size);
+
+/// What a reader allocates for one dataset or attribute at most; larger declared shapes are refused before
+/// anything is allocated (a small file can declare a huge compressed or unallocated dataset).
+struct ReadLimits {
+  static constexpr hsize_t kMaxElements = hsize_t{1} << 27;   ///< values of one dataset (1 GiB of doubles)
+  static constexpr std::size_t kMaxStringBytes = 16u << 20;   ///< one string attribute
+};
+
+/// What a time axis must satisfy (TimeAxis::check).
+struct TimeAxisRules {
+  hsize_t min_samples = 2;
+  bool starts_at_zero = true;     ///< t[0] = 0 (within 1e-9 s)
+  bool uniform = true;            ///< every step equal to the first within 1e-6 of it
+  double min_step = 1e-4;         ///< [s] bounds of the (first) step
+  double max_step = 0.1;          ///< [s]
+};
+
 class Reader {
  public:
   /// Opens `path` read-only. `expected` completes the message of a missing file ("an HDF5 primitive file
   /// written by `centaur plan`"). InputError if the path is missing, not a regular file, or not HDF5.
   Reader(std::string path, const std::string& expected);
+  /// Opens an HDF5 file image held in memory (HDF5's core driver, no disk access); messages name image.label.
+  Reader(const FileImage& image, const std::string& expected);
 
   hid_t file() const { return file_.get(); }
   const std::string& path() const { return path_; }
@@ -152,6 +178,19 @@ class Reader {
   /// A dataset as a matrix: rows = first extent, columns = the product of the others.
   RowMatrix matrix(hid_t loc, const std::string& key, const std::string& name, const std::vector<hsize_t>& want) const;
   Eigen::VectorXd vector(hid_t loc, const std::string& key, const std::string& name, hsize_t want) const;
+  /// The extent of the 1-D dataset `name` (read nothing), refused if outside [min, max].
+  hsize_t length(hid_t loc, const std::string& key, const std::string& name, hsize_t min, hsize_t max) const;
+
+  /// InputError naming `key` and the first element (row, column) that is NaN or infinite.
+  void requireFinite(const std::string& key, const double* data, Eigen::Index rows, Eigen::Index cols) const;
+  void requireFinite(const std::string& key, const RowMatrix& m) const {
+    requireFinite(key, m.data(), m.rows(), m.cols());
+  }
+  void requireFinite(const std::string& key, const Eigen::VectorXd& v) const { requireFinite(key, v.data(), v.size(), 1); }
+  /// A time axis: finite, strictly increasing, and the rules.
+  void requireTimeAxis(const std::string& key, const Eigen::VectorXd& t, const TimeAxisRules& rules) const;
+  /// Every row a unit quaternion (norm within `tolerance` of 1).
+  void requireUnitQuaternions(const std::string& key, const RowMatrix& q, double tolerance = 1e-3) const;
 
   bool hasAttribute(hid_t loc, const std::string& name) const;
   /// A required attribute; `key` names it in messages (e.g. "squat-jump@solve_status").

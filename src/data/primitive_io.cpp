@@ -14,7 +14,9 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/excerpt.hpp"
 #include "data/hdf5.hpp"
+#include "data/sim_log_file.hpp"
 
 namespace centaur::data {
 namespace {
@@ -23,6 +25,9 @@ constexpr hsize_t kNq = 19;     // template q: p(3), quat w,x,y,z (4), q_C (12)
 constexpr hsize_t kNv = 18;     // template nu: v(3), omega(3), qdot_C (12)
 constexpr hsize_t kFeet = 4;
 constexpr hsize_t kJoints = 12;
+constexpr hsize_t kNuControls = 31;         // knot controls: nu_dot (18), F (12), dt (1)
+constexpr hsize_t kMaxSamples = 300000;     // 300 s at 1 kHz: far beyond any primitive, bounds the memory
+constexpr hsize_t kMaxKnots = 100000;
 
 // Group attributes the library owns; Primitive::scalars/vectors/strings may not use these names.
 const std::set<std::string>& reservedAttributes() {
@@ -190,11 +195,37 @@ void writeFile(const std::string& tmp, const std::string& target, const std::vec
 // Reading
 // =====================================================================================================
 
-/// The primitive file's reader: h5::Reader plus the group listing that skips other kinds of groups.
+const char* const kExpected = "an HDF5 primitive file written by `centaur plan`";
+
+/// The primitive file's reader: h5::Reader plus the format check and the group listing that skips other kinds
+/// of groups.
 class Reader : public h5::Reader {
  public:
-  explicit Reader(const std::string& path)
-      : h5::Reader(path, "an HDF5 primitive file written by `centaur plan`") {}
+  explicit Reader(const std::string& path) : h5::Reader(path, kExpected) { checkFormat(); }
+  explicit Reader(const FileImage& image) : h5::Reader(image, kExpected) { checkFormat(); }
+
+  /// A file that says what it is must say "centaur-primitive" (a simulation log is recognised as one); files
+  /// written by other tools may omit the root attributes.
+  void checkFormat() const {
+    if (hasAttribute(file(), "format")) {
+      const h5::AttributeValue v = attribute(file(), "format", "format");
+      if (v.kind != h5::AttributeValue::kString) fail("format", "root attribute is not a string");
+      if (v.text == kSimLogFormat) {
+        fail("format", std::string("this is a simulation log (") + kSimLogFormat +
+                           ", written by `centaur simulate --out`), not a primitive file");
+      }
+      if (v.text != "centaur-primitive") {
+        fail("format", "is '" + excerpt(v.text) + "': not a centaur primitive file (format 'centaur-primitive')");
+      }
+    }
+    if (hasAttribute(file(), "format_version")) {
+      const std::vector<double> version = numbers(file(), "format_version", "format_version", 1);
+      if (!(version[0] >= 1 && version[0] <= kPrimitiveFormatVersion)) {
+        fail("format_version", "is " + std::to_string(version[0]) + "; this centaur reads versions 1 to " +
+                                   std::to_string(kPrimitiveFormatVersion));
+      }
+    }
+  }
 
   /// Lower-body primitive groups: other kinds of groups may share the file (e.g. an arm-flywheel
   /// trajectory, attribute kind = "arm-trajectory"); lower-body primitives have no `kind` attribute.
@@ -232,7 +263,8 @@ herr_t collectAttribute(hid_t loc, const char* name, const H5A_info_t* /*info*/,
   if (key == "solve_status") {
     if (expect(is_string)) p.solve.status = v.text;
   } else if (key == "solve_iterations") {
-    if (expect(is_scalar)) p.solve.iterations = static_cast<int>(std::lround(v.numbers[0]));
+    const bool integer = is_scalar && v.numbers[0] >= 0.0 && v.numbers[0] <= 1e9 && std::floor(v.numbers[0]) == v.numbers[0];
+    if (expect(integer)) p.solve.iterations = static_cast<int>(v.numbers[0]);
   } else if (key == "solve_time_s") {
     if (expect(is_scalar)) p.solve.solve_time_s = v.numbers[0];
   } else if (key == "final_cost") {
@@ -257,6 +289,52 @@ herr_t collectAttribute(hid_t loc, const char* name, const H5A_info_t* /*info*/,
   return 0;
 }
 
+/// The knots (raw OCP solution): empty, or consistent node times, steps and sizes.
+void readKnots(const Reader& r, hid_t gid, const std::string& k, Primitive& p) {
+  const std::string kk = k + "knots/";
+  const Id knots = r.openGroup(gid, k + "knots", "knots");
+  const hsize_t nk = r.length(knots.get(), kk + "t", "t", 0, kMaxKnots);
+  if (nk == 1) r.fail(kk + "t", "holds one node: the knots are empty or hold at least two nodes");
+  const hsize_t ns = nk > 0 ? nk - 1 : 0;
+  p.knot_t = r.vector(knots.get(), kk + "t", "t", nk);
+  p.knot_x = r.matrix(knots.get(), kk + "x", "x", {nk, nk > 0 ? kNq + kNv : 0});
+  p.knot_u = r.matrix(knots.get(), kk + "u", "u", {ns, nk > 0 ? kNuControls : 0});
+  p.knot_dt = r.vector(knots.get(), kk + "dt", "dt", ns);
+  r.requireFinite(kk + "x", p.knot_x);
+  r.requireFinite(kk + "u", p.knot_u);
+  r.requireFinite(kk + "dt", p.knot_dt);
+  if (nk == 0) return;
+  r.requireTimeAxis(kk + "t", p.knot_t, {2, true, false, 1e-6, 100.0});
+  const double scale = 1e-9 * (1.0 + std::abs(p.knot_t[static_cast<Eigen::Index>(ns)]));
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(ns); ++i) {
+    if (std::abs(p.knot_t[i + 1] - p.knot_t[i] - p.knot_dt[i]) > scale) {
+      r.fail(kk + "dt", "interval " + std::to_string(i) + " differs from the step of knots/t");
+    }
+  }
+  const double t_end = p.t[p.t.size() - 1], knots_end = p.knot_t[static_cast<Eigen::Index>(ns)];
+  const double step = p.t[1] - p.t[0];
+  if (t_end > knots_end + 1e-9 || knots_end - t_end > step + 1e-9) {
+    r.fail(kk + "t", "the knots end at " + std::to_string(knots_end) + " s but the samples at " +
+                         std::to_string(t_end) + " s (the samples span the knots)");
+  }
+}
+
+/// The solver outcome and the model metadata: typed, finite where numbers are read.
+void checkMetadata(const Reader& r, const std::string& k, const Primitive& p) {
+  if (!(p.solve.iterations >= 0)) r.fail(k + "solve_iterations", "must be an integer >= 0");
+  if (!(p.solve.solve_time_s >= 0.0 && std::isfinite(p.solve.solve_time_s))) {
+    r.fail(k + "solve_time_s", "must be a finite number >= 0");
+  }
+  for (const auto& [key, value] : p.scalars) {
+    if (!std::isfinite(value)) r.fail(k + key, "metadata value is not a finite number");
+  }
+  for (const auto& [key, values] : p.vectors) {
+    for (double v : values) {
+      if (!std::isfinite(v)) r.fail(k + key, "metadata vector holds a value that is not a finite number");
+    }
+  }
+}
+
 Primitive readGroup(const Reader& r, const std::string& name) {
   Id g(H5Gopen2(r.file(), name.c_str(), H5P_DEFAULT), H5Gclose);
   if (!g.valid()) r.fail(name, "cannot open group (corrupt?)" + h5::errorStackMessage());
@@ -264,35 +342,33 @@ Primitive readGroup(const Reader& r, const std::string& name) {
   Primitive p;
   p.name = name;
   const std::string k = name + "/";
-  p.t = r.vector(gid, k + "t", "t", 0);
-  const auto n = static_cast<hsize_t>(p.t.size());
-  p.q = r.matrix(gid, k + "q", "q", {n, kNq});
-  p.nu = r.matrix(gid, k + "nu", "nu", {n, kNv});
-  p.base_pos = r.matrix(gid, k + "base_pos", "base_pos", {n, 3});
-  p.base_quat = r.matrix(gid, k + "base_quat", "base_quat", {n, 4});
-  p.base_vel = r.matrix(gid, k + "base_vel", "base_vel", {n, 3});
-  p.base_omega = r.matrix(gid, k + "base_omega", "base_omega", {n, 3});
-  p.foot_pos = r.matrix(gid, k + "foot_pos", "foot_pos", {n, kFeet, 3});
-  p.foot_pos_rel = r.matrix(gid, k + "foot_pos_rel", "foot_pos_rel", {n, kFeet, 3});
-  p.foot_vel_rel = r.matrix(gid, k + "foot_vel_rel", "foot_vel_rel", {n, kFeet, 3});
-  p.force = r.matrix(gid, k + "force", "force", {n, kFeet, 3});
+  // The sample count is checked before anything is read; every dataset is read and checked in turn.
+  const hsize_t n = r.length(gid, k + "t", "t", 2, kMaxSamples);
+  p.t = r.vector(gid, k + "t", "t", n);
+  r.requireTimeAxis(k + "t", p.t, h5::TimeAxisRules{});
+  auto matrix = [&](const char* dataset, const std::vector<hsize_t>& shape) {
+    RowMatrix m = r.matrix(gid, k + dataset, dataset, shape);
+    r.requireFinite(k + dataset, m);
+    return m;
+  };
+  p.q = matrix("q", {n, kNq});
+  p.nu = matrix("nu", {n, kNv});
+  p.base_pos = matrix("base_pos", {n, 3});
+  p.base_quat = matrix("base_quat", {n, 4});
+  r.requireUnitQuaternions(k + "base_quat", p.base_quat);
+  p.base_vel = matrix("base_vel", {n, 3});
+  p.base_omega = matrix("base_omega", {n, 3});
+  p.foot_pos = matrix("foot_pos", {n, kFeet, 3});
+  p.foot_pos_rel = matrix("foot_pos_rel", {n, kFeet, 3});
+  p.foot_vel_rel = matrix("foot_vel_rel", {n, kFeet, 3});
+  p.force = matrix("force", {n, kFeet, 3});
   p.contact = r.matrix(gid, k + "contact", "contact", {n, kFeet});
   for (Eigen::Index i = 0; i < p.contact.size(); ++i) {
     const double c = p.contact.data()[i];
     if (c != 0.0 && c != 1.0) r.fail(k + "contact", "holds " + std::to_string(c) + ", allowed values are 0 and 1");
   }
-  p.tau = r.matrix(gid, k + "tau", "tau", {n, kJoints});
-
-  if (H5Lexists(gid, "knots", H5P_DEFAULT) <= 0) r.fail(k + "knots", "missing group");
-  Id knots(H5Gopen2(gid, "knots", H5P_DEFAULT), H5Gclose);
-  if (!knots.valid()) r.fail(k + "knots", "cannot open group (corrupt?)" + h5::errorStackMessage());
-  const std::string kk = k + "knots/";
-  p.knot_t = r.vector(knots.get(), kk + "t", "t", 0);
-  const auto nk = static_cast<hsize_t>(p.knot_t.size());
-  const hsize_t ns = nk > 0 ? nk - 1 : 0;
-  p.knot_x = r.matrix(knots.get(), kk + "x", "x", {nk, 0});
-  p.knot_u = r.matrix(knots.get(), kk + "u", "u", {ns, 0});
-  p.knot_dt = r.vector(knots.get(), kk + "dt", "dt", ns);
+  p.tau = matrix("tau", {n, kJoints});
+  readKnots(r, gid, k, p);
 
   AttributeSink sink{&p, {}};
   hsize_t idx = 0;
@@ -300,6 +376,7 @@ Primitive readGroup(const Reader& r, const std::string& name) {
     r.fail(name, "cannot read the group attributes (corrupt?)" + h5::errorStackMessage());
   }
   if (!sink.bad.empty()) r.fail(k + sink.bad.front(), "attribute has the wrong type or value");
+  checkMetadata(r, k, p);
   return p;
 }
 
@@ -348,27 +425,32 @@ void writePrimitive(const std::string& path, const Primitive& prim, WriteMode mo
   writePrimitives(path, std::vector<Primitive>{prim}, mode);
 }
 
-std::vector<std::string> listPrimitives(const std::string& path) {
-  const Reader r(path);
-  return r.groupNames();
-}
+namespace {
 
-std::vector<Primitive> readPrimitives(const std::string& path) {
-  const Reader r(path);
+std::vector<Primitive> readAll(const Reader& r) {
   std::vector<Primitive> out;
   for (const std::string& name : r.groupNames()) out.push_back(readGroup(r, name));
   return out;
 }
 
-Primitive readPrimitive(const std::string& path, const std::string& name) {
-  const Reader r(path);
+Primitive readOne(const Reader& r, const std::string& name) {
   const std::vector<std::string> names = r.groupNames();
   if (std::find(names.begin(), names.end(), name) == names.end()) {
     std::string available;
-    for (const std::string& n : names) available += (available.empty() ? "" : ", ") + n;
+    for (std::size_t i = 0; i < names.size() && i < 20; ++i) available += (i ? ", " : "") + excerpt(names[i]);
+    if (names.size() > 20) available += " and " + std::to_string(names.size() - 20) + " more";
     r.fail(name, "no such primitive; the file holds: " + (available.empty() ? std::string("none") : available));
   }
   return readGroup(r, name);
 }
+
+}  // namespace
+
+std::vector<std::string> listPrimitives(const std::string& path) { return Reader(path).groupNames(); }
+std::vector<std::string> listPrimitives(const FileImage& image) { return Reader(image).groupNames(); }
+std::vector<Primitive> readPrimitives(const std::string& path) { return readAll(Reader(path)); }
+std::vector<Primitive> readPrimitives(const FileImage& image) { return readAll(Reader(image)); }
+Primitive readPrimitive(const std::string& path, const std::string& name) { return readOne(Reader(path), name); }
+Primitive readPrimitive(const FileImage& image, const std::string& name) { return readOne(Reader(image), name); }
 
 }  // namespace centaur::data

@@ -7,10 +7,13 @@
 //     over the target; on any error the temporary is removed and centaur::RuntimeError is thrown.
 //   - Reading a missing, non-HDF5 or corrupt file, or a group missing a dataset / with a wrongly shaped
 //     dataset, throws centaur::InputError naming the file and the dataset (CLI exit code 2). HDF5's own
-//     error printing is silenced.
+//     error printing is silenced. Every dataset is validated as it is read (docs/primitive-format.md,
+//     "Validation"): sample count, time axis, finite values, unit quaternions, contact flags, consistent knots
+//     and metadata; a simulation log or another format is recognised and refused by its `format` attribute.
 #include <string>
 #include <vector>
 
+#include "data/file_image.hpp"
 #include "data/primitive.hpp"
 
 namespace centaur::data {
@@ -36,11 +39,14 @@ void writePrimitive(const std::string& path, const Primitive& prim, WriteMode mo
 
 /// Names of the primitives (groups) in the file, in the order they were written.
 std::vector<std::string> listPrimitives(const std::string& path);
+std::vector<std::string> listPrimitives(const FileImage& image);
 
 /// Every primitive in the file, in the order of listPrimitives().
 std::vector<Primitive> readPrimitives(const std::string& path);
+std::vector<Primitive> readPrimitives(const FileImage& image);
 
 /// One primitive by name; InputError naming the file and listing the available names if absent.
 Primitive readPrimitive(const std::string& path, const std::string& name);
+Primitive readPrimitive(const FileImage& image, const std::string& name);
 
 }  // namespace centaur::data

@@ -100,12 +100,22 @@ void writeSimLog(const std::string& path, const SimLogHeader& header,
 
 // ---- reading -----------------------------------------------------------------------------------------
 
+namespace {
+const char* const kExpectedLog = "a simulation log written by `centaur simulate --out`";
+}  // namespace
+
 struct SimLogFile::Impl {
-  explicit Impl(const std::string& path) : reader(path, "a simulation log written by `centaur simulate --out`") {}
+  explicit Impl(const std::string& path) : reader(path, kExpectedLog) {}
+  explicit Impl(const FileImage& image) : reader(image, kExpectedLog) {}
   h5::Reader reader;
+  Eigen::VectorXd t;
 };
 
-SimLogFile::SimLogFile(const std::string& path) : impl_(std::make_unique<Impl>(path)) {
+SimLogFile::SimLogFile(const std::string& path) : impl_(std::make_unique<Impl>(path)) { open(); }
+
+SimLogFile::SimLogFile(const FileImage& image) : impl_(std::make_unique<Impl>(image)) { open(); }
+
+void SimLogFile::open() {
   const h5::Reader& r = impl_->reader;
   const hid_t f = r.file();
   if (!r.hasAttribute(f, "format")) {
@@ -117,12 +127,15 @@ SimLogFile::SimLogFile(const std::string& path) : impl_(std::make_unique<Impl>(p
   }
   header_.joint_names = r.textList(f, "joint_names", "joint_names");
   header_.contact_bodies = r.textList(f, "contact_bodies", "contact_bodies");
+  if (header_.joint_names.empty() || header_.joint_names.size() > kMaxLogJoints) {
+    r.fail("joint_names", "holds " + std::to_string(header_.joint_names.size()) + " names, allowed [1, " +
+                              std::to_string(kMaxLogJoints) + "]");
+  }
+  if (header_.contact_bodies.size() > kMaxLogJoints) r.fail("contact_bodies", "holds too many names");
   header_.config_yaml = r.text(f, "config", "config");
   header_.scenario = r.text(f, "scenario", "scenario");
   if (r.hasAttribute(f, "summary")) header_.summary_json = r.text(f, "summary", "summary");
-  const std::vector<hsize_t> t_dims = r.shape(f, "t", "t");
-  if (t_dims.size() != 1) r.fail("t", "dataset has shape " + h5::shapeText(t_dims) + ", expected (N)");
-  header_.samples = static_cast<std::size_t>(t_dims[0]);
+  header_.samples = static_cast<std::size_t>(r.length(f, "t", "t", 1, kMaxLogSamples));
   for (const LogDataset& d : simLogDatasets()) {
     const std::vector<hsize_t> want = logDatasetDims(d, header_);
     const std::vector<hsize_t> dims = r.shape(f, d.name, d.name);
@@ -131,6 +144,9 @@ SimLogFile::SimLogFile(const std::string& path) : impl_(std::make_unique<Impl>(p
                          " (N samples of 't', the root attributes' joints and contact bodies)");
     }
   }
+  // The time axis is read now (N values): finite and increasing, at most one sample per microsecond.
+  impl_->t = r.vector(f, "t", "t", header_.samples);
+  r.requireTimeAxis("t", impl_->t, {1, false, false, 1e-6, 1e3});
 }
 
 SimLogFile::~SimLogFile() = default;
@@ -140,13 +156,14 @@ const std::string& SimLogFile::path() const { return impl_->reader.path(); }
 RowMatrix SimLogFile::read(const std::string& name) const {
   for (const LogDataset& d : simLogDatasets()) {
     if (name != d.name) continue;
-    return impl_->reader.matrix(impl_->reader.file(), d.name, d.name, logDatasetDims(d, header_));
+    const h5::Reader& r = impl_->reader;
+    RowMatrix m = r.matrix(r.file(), d.name, d.name, logDatasetDims(d, header_));
+    r.requireFinite(d.name, m);
+    return m;
   }
   throw InputError(path() + ": '" + name + "' is not a dataset of the simulation log format");
 }
 
-Eigen::VectorXd SimLogFile::time() const {
-  return impl_->reader.vector(impl_->reader.file(), "t", "t", header_.samples);
-}
+Eigen::VectorXd SimLogFile::time() const { return impl_->t; }
 
 }  // namespace centaur::data

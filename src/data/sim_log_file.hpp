@@ -15,11 +15,17 @@
 
 #include <Eigen/Core>
 
+#include "data/file_image.hpp"
 #include "data/row_matrix.hpp"
 
 namespace centaur::data {
 
 inline constexpr const char* kSimLogFormat = "centaur-sim-log 1";
+
+/// Most samples (rows) a log may hold: one hour at 1 kHz. The simulator refuses a run whose log would be larger.
+inline constexpr std::size_t kMaxLogSamples = 3600001;
+/// Most joints (and contact bodies) a log may name.
+inline constexpr std::size_t kMaxLogJoints = 1000;
 
 /// The trailing shape of a log dataset.
 enum class LogColumns { kNone, kJoints, k3, k4, k6, kContacts3 };
@@ -52,12 +58,14 @@ std::vector<unsigned long long> logDatasetDims(const LogDataset& dataset, const 
 void writeSimLog(const std::string& path, const SimLogHeader& header,
                  const std::map<std::string, const std::vector<double>*>& data);
 
-/// A log opened for reading. The constructor checks the format attribute, the header and the shape of every
-/// dataset of the table (nothing is read or allocated beyond the header); InputError naming the file and the
-/// dataset or attribute otherwise (e.g. a primitive file given as a log).
+/// A log opened for reading. The constructor checks the format attribute, the header, the shape of every
+/// dataset of the table and the time axis (finite, increasing; nothing else is read); read() checks that each
+/// dataset it reads holds finite values only. InputError naming the file and the dataset or attribute
+/// otherwise (e.g. a primitive file given as a log).
 class SimLogFile {
  public:
   explicit SimLogFile(const std::string& path);
+  explicit SimLogFile(const FileImage& image);
   ~SimLogFile();
   SimLogFile(const SimLogFile&) = delete;
   SimLogFile& operator=(const SimLogFile&) = delete;
@@ -69,6 +77,7 @@ class SimLogFile {
   Eigen::VectorXd time() const;
 
  private:
+  void open();
   struct Impl;
   std::unique_ptr<Impl> impl_;
   SimLogHeader header_;

@@ -85,6 +85,9 @@ std::string MiddlewareConfig::cycloneConfig() const {
   xml += "</General><Discovery><ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>30"
          "</MaxAutoParticipantIndex>";
   if (loopback || !peers.empty()) {
+    // Unicast discovery: an announcement sent before the peer's socket exists is lost, and Cyclone repeats it
+    // only every SPDPInterval (30 s by default); two nodes started together would then wait that long.
+    xml += "<SPDPInterval>1s</SPDPInterval>";
     xml += "<Peers>";
     if (loopback) xml += "<Peer address=\"127.0.0.1\"/>";
     for (const std::string& p : peers) xml += "<Peer address=\"" + p + "\"/>";

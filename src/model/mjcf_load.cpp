@@ -2,12 +2,17 @@
 
 #include <mujoco/mujoco.h>
 
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <sstream>
+#include <string>
 
 #include "common/error.hpp"
+#include "common/excerpt.hpp"
+#include "common/input_file.hpp"
 
 namespace centaur {
 
@@ -61,12 +66,33 @@ ModelPtr loadWithoutVisuals(const std::string& path) {
   return ModelPtr(mj_loadXML(path.c_str(), vfs.get(), err, sizeof(err)));
 }
 
+// MuJoCo's default handlers append to MUJOCO_LOG.TXT in the working directory, and its default error handler
+// waits for Enter on stdin before exit(1). Ours print warnings to stderr and turn errors into RuntimeError
+// (exit code 4): nothing is written to the working directory, nothing waits.
+void warningToStderr(const char* msg) { std::fprintf(stderr, "MuJoCo warning: %s\n", msg); }
+void errorToException(const char* msg) { throw RuntimeError(std::string("MuJoCo error: ") + msg); }
+
 }  // namespace
 
+void installMujocoHandlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    mju_user_warning = warningToStderr;
+    mju_user_error = errorToException;
+  });
+}
+
 mjModel_* loadMjcf(const std::string& path, bool discard_visual) {
+  installMujocoHandlers();
+  requireRegularFile(path, "an MJCF model (MuJoCo XML)");
   char err[1000] = "";
   ModelPtr full(mj_loadXML(path.c_str(), nullptr, err, sizeof(err)));
-  if (!full) throw InputError(path + ": cannot load the MJCF model: " + err);
+  if (!full) {
+    std::string why(err);
+    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    for (char& c : why) c = c == '\n' ? ' ' : c;
+    throw InputError(excerpt(path, 4 * kMaxExcerpt) + ": cannot load the MJCF model: " + excerpt(why, 400));
+  }
   if (!discard_visual) return full.release();
   ModelPtr lean = loadWithoutVisuals(path);
   if (!lean || !sameInertia(lean.get(), full.get())) return full.release();

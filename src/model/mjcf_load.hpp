@@ -13,7 +13,12 @@ namespace centaur {
 /// discardvisual). They cost time in every kinematics pass (pose of each geom) but play no part in the dynamics
 /// or contacts. The result is checked: if any body's mass, inertia or CoM differs from the full load (a model
 /// that derives inertia from those geoms), the full model is returned instead. The caller owns the model
-/// (mj_deleteModel).
+/// (mj_deleteModel). A path that is not a regular file (a FIFO, a directory, a device) is refused before MuJoCo
+/// opens it.
 mjModel_* loadMjcf(const std::string& path, bool discard_visual);
+
+/// MuJoCo's process-wide message handlers: warnings to stderr, errors as RuntimeError, never MUJOCO_LOG.TXT in the
+/// working directory nor a prompt on stdin. loadMjcf() installs them; idempotent.
+void installMujocoHandlers();
 
 }  // namespace centaur

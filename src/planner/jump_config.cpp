@@ -1,5 +1,10 @@
 #include "planner/jump_config.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "common/excerpt.hpp"
 #include "common/yaml_reader.hpp"
 #include "model/template_params.hpp"
 
@@ -73,6 +78,47 @@ cost:
   base_pose: 50.0
 )";
 
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
+
+/// Consistency of the contact-force settings that Ipopt would otherwise take minutes to find infeasible.
+void checkContactForces(const JumpConfig& c, const std::string& label) {
+  const double f_thr = c.contact.force_threshold;
+  if (f_thr > c.contact.force_max) {
+    throw InputError(label, "contact.force_threshold",
+                     num(f_thr) + " N exceeds contact.force_max " + num(c.contact.force_max) +
+                         " N: no contact force can satisfy both");
+  }
+  // Both jumps start with all four feet pinned in contact on intervals 0..N_T, each pressing with at least F_thr,
+  // from rest. If 4 F_thr exceeds the weight, the centre of mass accelerates upwards by at least
+  // a = 4 F_thr / m - g for the whole stance (at least (N_T + 1) dt_min long), so the waist rises by at least
+  // a T^2 / 2 above feet that do not move. The waist can be at most r (the farthest corner of the workspace box)
+  // above or below a foot, whatever its orientation: a rise beyond 2 r is impossible.
+  const double m = c.model.totalMass(), g = c.model.gravity;
+  const double a = 4.0 * f_thr / m - g;
+  if (a <= 0.0) return;
+  const double T = (c.horizon.takeoff + 1) * c.horizon.dt_min;
+  double r = 0.0;
+  for (double x : {c.workspace.front_x[0], c.workspace.front_x[1], c.workspace.rear_x[0], c.workspace.rear_x[1]}) {
+    for (double y : {c.workspace.left_y[0], c.workspace.left_y[1], c.workspace.right_y[0], c.workspace.right_y[1]}) {
+      for (double z : {c.workspace.z[0], c.workspace.z[1]}) r = std::max(r, std::sqrt(x * x + y * y + z * z));
+    }
+  }
+  const double rise = 0.5 * a * T * T;
+  if (rise > 2.0 * r) {
+    throw InputError(label, "contact.force_threshold",
+                     num(f_thr) + " N on each of the four feet lifts the " + num(m) +
+                         " kg robot at >= " + num(a) + " m/s^2 for the >= " + num(T) +
+                         " s of the initial stance: the waist would rise >= " + num(rise) +
+                         " m above its pinned feet, beyond the legs' reach (" + num(2.0 * r) +
+                         " m); lower the threshold (e.g. below the weight share " + num(m * g / 4.0) +
+                         " N) or raise horizon.dt_min / horizon.takeoff");
+  }
+}
 
 }  // namespace
 
@@ -182,6 +228,8 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   readSolverSettings(s, c.solver);
   r.finish();
 
+  checkContactForces(c, label);
+
   // A squat jump whose target is below the start, or unreachable by construction, is bad input.
   if (c.primitive == "squat-jump") {
     const double z0 = c.initialWaistHeight();
@@ -208,8 +256,11 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
 JumpConfig loadJumpConfig(const std::string& primitive, const std::string& file, const std::vector<std::string>& overrides) {
   std::string label;
   YAML::Node root = loadLayered(loadYamlString(defaultJumpYaml(primitive), "<defaults>"), file, overrides, label);
-  if (root["primitive"] && root["primitive"].as<std::string>() != primitive) {
-    throw InputError(label, "primitive", "is '" + root["primitive"].as<std::string>() + "' but the command plans '" + primitive + "'");
+  const YAML::Node declared = root["primitive"];
+  if (declared && (!declared.IsScalar() || declared.Scalar() != primitive)) {
+    throw InputError(label, "primitive",
+                     "is " + (declared.IsScalar() ? "'" + excerpt(declared.Scalar()) + "'" : std::string("not a name")) +
+                         " but the command plans '" + primitive + "'");
   }
   return parseJumpConfig(root, label);
 }

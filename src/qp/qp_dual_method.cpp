@@ -184,17 +184,22 @@ void QpSolver::recomputePrimalDual() {
   activeSetSolve(*g_, x_, u_);
 }
 
+int QpSolver::mostNegativeMultiplier() const {
+  int worst = -1;
+  double most_negative = 0.0;
+  for (int k = 0; k < iq_; ++k)
+    if (!is_eq_[k] && u_[k] < most_negative) {
+      most_negative = u_[k];
+      worst = k;
+    }
+  return worst;
+}
+
 void QpSolver::restoreDualFeasibility() {
   // x := minimiser on the active set; drop the most negative inequality multiplier until none is left.
   for (;;) {
     recomputePrimalDual();
-    int worst = -1;
-    double most_negative = 0.0;
-    for (int k = 0; k < iq_; ++k)
-      if (!is_eq_[k] && u_[k] < most_negative) {
-        most_negative = u_[k];
-        worst = k;
-      }
+    const int worst = mostNegativeMultiplier();
     if (worst < 0) return;
     dropFromActiveSet(worst);
   }

@@ -316,13 +316,7 @@ void QpSolver::refine() {
     activeSetSolve(res_.head(n_), w_, r_);
     x_.head(n_) += w_.head(n_);
     u_.head(iq_) += r_.head(iq_);
-    int worst = -1;
-    double most_negative = 0.0;
-    for (int k = 0; k < iq_; ++k)
-      if (!is_eq_[k] && u_[k] < most_negative) {
-        most_negative = u_[k];
-        worst = k;
-      }
+    const int worst = mostNegativeMultiplier();
     if (worst < 0) return;
     dropFromActiveSet(worst);
   }

@@ -138,6 +138,7 @@ class QpSolver {
   void activeSetSolve(const Eigen::Ref<const Eigen::VectorXd>& gv, Eigen::VectorXd& x_out, Eigen::VectorXd& u_out);
   void recomputePrimalDual();        // x and u from the current factorisation (warm start)
   void restoreDualFeasibility();     // recompute, dropping negative inequality multipliers
+  int mostNegativeMultiplier() const;  // active-set position of the most negative inequality multiplier, -1: none
   bool isDependent() const;          // from d_ after computeD
   void applyH(const Eigen::VectorXd& v, Eigen::VectorXd& out) const;  // out = (H + shift_ I) v
   // L_ = chol(H + shift I); false if the factorisation fails. Sets shift_.

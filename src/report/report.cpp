@@ -57,14 +57,22 @@ std::optional<data::Primitive> loadPlan(const std::string& file, const std::stri
   return p;
 }
 
-nlohmann::json logRun(const RunSource& src, const data::SimLogFile& log, KinematicModel& model, double rate) {
+/// `path` as the page shows it (ReportOptions::shown_paths).
+std::string shown(const ReportOptions& options, const std::string& path) {
+  const auto it = options.shown_paths.find(path);
+  return it == options.shown_paths.end() ? path : it->second;
+}
+
+nlohmann::json logRun(const RunSource& src, const data::SimLogFile& log, KinematicModel& model,
+                      const ReportOptions& options) {
+  const double rate = options.pose_rate_hz;
   const LogSettings settings = readLogSettings(log);
   const std::optional<data::Primitive> plan = loadPlan(src.primitive_path, src.primitive_name, log.header().scenario);
   const Eigen::VectorXd t = log.time();
   nlohmann::json run;
   run["label"] = src.label.empty() ? stem(src.log_path) : src.label;
   run["kind"] = "log";
-  run["log"] = src.log_path;
+  run["log"] = shown(options, src.log_path);
   run["scenario"] = log.header().scenario;
   run["t_start"] = t[0];
   run["t_end"] = t[t.size() - 1];
@@ -78,12 +86,13 @@ nlohmann::json logRun(const RunSource& src, const data::SimLogFile& log, Kinemat
   run["plan"] = nullptr;
   if (plan) {
     run["ghost"] = planGhost(*plan, settings.primitive_start, rate, model.boxHalfExtents(model.movingBodies()[0]));
-    run["plan"] = planInfo(*plan, src.primitive_path);
+    run["plan"] = planInfo(*plan, shown(options, src.primitive_path));
   }
   return run;
 }
 
-nlohmann::json planRun(const RunSource& src, KinematicModel& model, double rate) {
+nlohmann::json planRun(const RunSource& src, KinematicModel& model, const ReportOptions& options) {
+  const double rate = options.pose_rate_hz;
   const std::optional<data::Primitive> plan = loadPlan(src.primitive_path, src.primitive_name, "");
   nlohmann::json run;
   run["label"] = src.label.empty() ? plan->name + " (plan)" : src.label;
@@ -98,7 +107,7 @@ nlohmann::json planRun(const RunSource& src, KinematicModel& model, double rate)
   run["metrics"] = nullptr;
   run["config_yaml"] = plan->config_yaml;
   run["ghost"] = planGhost(*plan, 0.0, rate, model.boxHalfExtents(model.movingBodies()[0]));
-  run["plan"] = planInfo(*plan, src.primitive_path);
+  run["plan"] = planInfo(*plan, shown(options, src.primitive_path));
   return run;
 }
 
@@ -146,8 +155,7 @@ ReportStats writeReport(const std::string& html_path, const std::vector<RunSourc
   nlohmann::json list = nlohmann::json::array();
   ReportStats stats;
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    list.push_back(logs[i] ? logRun(runs[i], *logs[i], model, options.pose_rate_hz)
-                           : planRun(runs[i], model, options.pose_rate_hz));
+    list.push_back(logs[i] ? logRun(runs[i], *logs[i], model, options) : planRun(runs[i], model, options));
     if (logs[i]) stats.frames += list.back()["frames"]["frames"].get<std::size_t>();
   }
   const std::string title = options.title.empty() ? defaultTitle(runs) : options.title;

@@ -2,6 +2,7 @@
 // `centaur report` and the report.html of `centaur compare`: one self-contained HTML page replaying simulated
 // runs (and plans) in 3D with synced plots and the runs' metadata (docs/report.md).
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct ReportOptions {
   std::string title;            ///< "" = derived from the runs
   double pose_rate_hz = 100.0;  ///< [Hz] body poses per second of replay, [10, 1000]
   std::string model_path;       ///< MJCF; "" = the first log's `model` setting, else the shipped CENTAURO
+  /// Paths shown in the page instead of the ones read (a file read from a staging directory under the name it
+  /// will have once committed, e.g. by `compare`); a path not in the map is shown as it is.
+  std::map<std::string, std::string> shown_paths;
 };
 
 struct ReportStats {

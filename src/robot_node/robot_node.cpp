@@ -4,6 +4,7 @@
 #include <map>
 
 #include "common/error.hpp"
+#include "common/output_guard.hpp"
 #include "common/yaml_reader.hpp"
 #include "sim/scenario.hpp"
 #include "stabilizers/online_stage.hpp"
@@ -59,6 +60,10 @@ RobotNodeResult runRobotNode(const RobotNodeArgs& a) {
     safety.read(r);
   }
   RemoteSettings settings = readSettings(config, a.lockstep);
+  sim::RunOutputs outputs;
+  outputs.log_path = a.log_path;
+  // Before anything is written: the log and its effective configuration must not overwrite an input.
+  guardOutputs({{"--config", a.config_file}, {"model", config.robot.model_path}}, sim::runOutputFiles(outputs));
   settings.record_round_trips = a.record_round_trips;
   sim::SimSettings robot_settings = config.robot;
   robot_settings.visual_geoms = false;
@@ -68,8 +73,6 @@ RobotNodeResult runRobotNode(const RobotNodeArgs& a) {
   const std::map<std::string, std::string> no_options;
   sim::ScenarioContext ctx{config, controller_section, no_options, robot};
   std::unique_ptr<sim::RunObserver> observer = scenario->make_observer ? scenario->make_observer(ctx) : nullptr;
-  sim::RunOutputs outputs;
-  outputs.log_path = a.log_path;
   RobotNodeResult result;
   result.summary = sim::runSimulation(robot, remote, config, outputs, a.task, observer.get());
   remote.finish();

@@ -1,5 +1,5 @@
 #pragma once
-// Outcome and metrics of a jump run (issue 5 item 5), from the simulator's ground truth and the IMU the
+// Outcome and metrics of a jump run, from the simulator's ground truth and the IMU the
 // controller saw. Added to the run summary / `--json`:
 //   pitch_rms_deg        RMS of the IMU pitch (ZYX pitch of w_R_imu) from the primitive's start to the end
 //   peak_imu_pitch_deg   max |IMU pitch| over the same window

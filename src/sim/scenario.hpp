@@ -39,6 +39,7 @@ struct ScenarioOption {
   std::string default_value;         ///< used when the option is absent
   std::vector<std::string> allowed;  ///< empty = any value
   bool required = false;
+  bool input_file = false;           ///< the value names a file the run reads (no output may overwrite it)
 };
 
 /// What a controller factory receives.

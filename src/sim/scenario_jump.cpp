@@ -1,4 +1,4 @@
-// The jump scenarios (issue 5 item 5): `squat-jump` and `half-squat-jump`, a planned primitive replayed on
+// The jump scenarios: `squat-jump` and `half-squat-jump`, a planned primitive replayed on
 // CENTAURO by the JumpController with one of the upper-body stabilizers.
 //   options: --primitive F.h5  (the group named like the scenario; absent -> planned now with the defaults)
 //            --primitive-group NAME (another group of that file, e.g. a grid point of a sweep database)
@@ -43,9 +43,10 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
   s.defaults_yaml = toYamlString(mergeYaml(loadYamlString(s.defaults_yaml, name),
                                            loadYamlString(controllerDefaultsYaml(name), name)));
   s.options = {{"primitive", "primitive database (HDF5) holding the group '" + name + "' (default: plan it now)",
-                "", {}, false},
+                "", {}, false, true},
                {"stabilizer", "upper-body stabilizer", "none", {"none", "raibert", "angmom", "ocp"}, false},
-               {"flywheel", "arm-flywheel plan (HDF5) for --stabilizer ocp (default: plan it now)", "", {}, false},
+               {"flywheel", "arm-flywheel plan (HDF5) for --stabilizer ocp (default: plan it now)", "", {}, false,
+                true},
                {"primitive-group", "group of the --primitive file to replay (default: the one named like the jump)",
                 "", {}, false}};
   s.make_controller = [name](ScenarioContext& ctx) -> std::unique_ptr<Controller> {

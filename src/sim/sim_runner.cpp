@@ -1,5 +1,6 @@
 #include "sim/sim_runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -9,7 +10,11 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/excerpt.hpp"
+#include "common/output_guard.hpp"
 #include "common/stats.hpp"
+#include "data/hdf5.hpp"
+#include "data/sim_log_file.hpp"
 #include "sim/png_writer.hpp"
 #include "sim/renderer.hpp"
 #include "sim/sim_log.hpp"
@@ -53,12 +58,31 @@ std::string configPathFor(const std::string& output_path) {
   return p.string();
 }
 
+std::vector<NamedPath> runOutputFiles(const RunOutputs& out) {
+  std::vector<NamedPath> files;
+  for (const auto& [role, path] : {std::pair<std::string, std::string>{"--out", out.log_path},
+                                   {"--video", out.video_path},
+                                   {"--snapshot", out.snapshot_path}}) {
+    if (path.empty()) continue;
+    files.push_back({role, path});
+  }
+  // Outputs with the same stem share one effective configuration (the same text): listed once.
+  const std::size_t n = files.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string config = configPathFor(files[i].path);
+    bool listed = false;
+    for (std::size_t j = n; j < files.size(); ++j) listed = listed || files[j].path == config;
+    if (!listed) files.push_back({"the effective configuration of " + files[i].role, config});
+  }
+  return files;
+}
+
 RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimConfig& config,
                          const RunOutputs& out, const std::string& scenario_name, RunObserver* observer) {
   RunSummary sum;
   const double dt = robot.controlPeriodSeconds();
   const long periods = std::lround(config.duration / dt);
-  if (!out.snapshot_path.empty() && (out.snapshot_time < 0.0 || out.snapshot_time > config.duration + 1e-9)) {
+  if (!out.snapshot_path.empty() && !(out.snapshot_time >= 0.0 && out.snapshot_time <= config.duration + 1e-9)) {
     throw InputError("--at " + std::to_string(out.snapshot_time) + ": snapshot time must be in [0, duration = " +
                      std::to_string(config.duration) + "] s");
   }
@@ -71,13 +95,32 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
   command.resize(n);
 
   std::unique_ptr<SimLog> log;
-  if (!out.log_path.empty()) {
+  if (!out.log_path.empty()) {  // a log larger than the readers accept is refused before the run
+    const auto rows = static_cast<unsigned long long>(periods / config.log_decimation + 2);
+    const auto width = static_cast<unsigned long long>(std::max<Eigen::Index>(n, 6));
+    if (rows > data::kMaxLogSamples || rows * width > data::h5::ReadLimits::kMaxElements) {
+      throw InputError(config.label, "log.decimation",
+                       "the log would hold " + std::to_string(rows) + " samples of " + std::to_string(n) +
+                           " joints, more than a log may (" + std::to_string(data::kMaxLogSamples) +
+                           " samples); raise log.decimation or shorten duration");
+    }
     log = std::make_unique<SimLog>(robot.jointNames(), robot.settings().contact_bodies,
                                    static_cast<std::size_t>(periods / config.log_decimation + 2));
   }
   std::unique_ptr<Renderer> renderer;
   std::unique_ptr<VideoWriter> video;
   if (!out.video_path.empty() || !out.snapshot_path.empty()) {
+    const std::string& camera = config.render.camera;
+    if (!camera.empty() && mj_name2id(robot.model(), mjOBJ_CAMERA, camera.c_str()) < 0) {
+      std::string names;
+      for (int i = 0; i < robot.model()->ncam; ++i) {
+        const char* name = mj_id2name(robot.model(), mjOBJ_CAMERA, i);
+        if (name != nullptr) names += std::string(names.empty() ? "" : ", ") + name;
+      }
+      throw InputError(config.label, "render.camera",
+                       "no camera '" + excerpt(camera) + "' in the model (its cameras: " +
+                           (names.empty() ? std::string("none") : names) + "; \"\" = a free camera following the pelvis)");
+    }
     renderer = std::make_unique<Renderer>(robot.model(), config.render.width, config.render.height,
                                           config.render.camera, "pelvis", config.render.shadows,
                                           config.render.reflections);
@@ -161,6 +204,9 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
   sum.real_time_factor = wall > 0.0 ? sum.duration_s / wall : 0.0;
   sum.period_time_us_median = 1e6 * median(period_s);
   sum.tick_time_us_median = 1e6 * median(tick_s);
+  sum.tick_time_us_p99 = 1e6 * percentile(tick_s, 0.99);
+  sum.control_period_us = 1e6 * dt;
+  sum.ticks_over_period = std::count_if(tick_s.begin(), tick_s.end(), [dt](double x) { return x > dt; });
   if (observer) {
     sum.extra = observer->summary();
     const std::string o = observer->outcome();
@@ -213,6 +259,11 @@ RunSummary runScenario(const Scenario& scenario, const std::string& config_file,
     if (!options.count(kv.first)) throw InputError("simulate " + scenario.name + ": unknown option --" + kv.first);
   }
   const SimConfig config = loadSimConfig(scenario.defaults_yaml, config_file, overrides);
+  std::vector<NamedPath> inputs{{"--config", config_file}, {"model", config.robot.model_path}};
+  for (const auto& o : scenario.options) {
+    if (o.input_file) inputs.push_back({"--" + o.name, options[o.name]});
+  }
+  guardOutputs(inputs, runOutputFiles(outputs));
   SimSettings settings = config.robot;
   settings.visual_geoms = !outputs.video_path.empty() || !outputs.snapshot_path.empty();  // only drawing needs them
   MujocoRobot robot(settings);

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/output_guard.hpp"
 #include "controller/robot_interface.hpp"
 #include "sim/mujoco_robot.hpp"
 #include "sim/scenario.hpp"
@@ -37,6 +38,11 @@ struct RunSummary {
   double real_time_factor = 0.0;         ///< simulated time / wall_time_s
   double period_time_us_median = 0.0;    ///< [us] median wall time of a control period (physics + controller)
   double tick_time_us_median = 0.0;      ///< [us] median wall time of the controller's tick() alone
+  double tick_time_us_p99 = 0.0;         ///< [us] 99th percentile of the same
+  double control_period_us = 0.0;        ///< [us] the control period the tick must fit in (1000 at 1 kHz)
+  long ticks_over_period = 0;            ///< ticks that took longer than the control period
+  /// The controller cannot keep its rate on this machine: its median tick exceeds the control period.
+  bool tickOverBudget() const { return control_period_us > 0.0 && tick_time_us_median > control_period_us; }
   long control_periods = 0;
   long physics_steps = 0;
   int video_frames = 0;
@@ -56,13 +62,18 @@ RunSummary runSimulation(MujocoRobot& robot, Controller& controller, const SimCo
                          const RunOutputs& outputs, const std::string& scenario_name,
                          RunObserver* observer = nullptr);
 
-/// The whole scenario: load the configuration (defaults <- file <- overrides), build the robot and the
-/// scenario's controller, run. `options` are the scenario options given on the command line.
+/// The whole scenario: load the configuration (defaults <- file <- overrides), refuse outputs that would
+/// overwrite an input (the configuration file, the model, the scenario's input-file options; guardOutputs),
+/// build the robot and the scenario's controller, run. `options` are the scenario options given on the command
+/// line.
 RunSummary runScenario(const Scenario& scenario, const std::string& config_file,
                        const std::vector<std::string>& overrides, const std::map<std::string, std::string>& options,
                        const RunOutputs& outputs);
 
 /// Where the effective configuration of an output goes: <dir>/<stem>.config.yaml.
 std::string configPathFor(const std::string& output_path);
+
+/// Every file a run with these outputs writes (each output and its effective configuration), for guardOutputs().
+std::vector<NamedPath> runOutputFiles(const RunOutputs& outputs);
 
 }  // namespace centaur::sim

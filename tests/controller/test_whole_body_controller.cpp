@@ -1,5 +1,5 @@
 // ctest-labels: unit physics
-// Whole-body controller (issue 4 item 5) and its robot tasks (item 2) on CENTAURO, without a simulator:
+// Whole-body controller and its robot tasks on CENTAURO, without a simulator:
 // task Jacobians against central finite differences, the YAML stack, zero allocations over 1000 ticks, safe
 // mode on NaN input, and strict priority on the robot (the posture level never worsens the feet).
 #include <gtest/gtest.h>

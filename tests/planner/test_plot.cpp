@@ -19,6 +19,7 @@
 #include "support/synthetic_primitive.hpp"
 
 // The CLI is an executable, not a library: compile its plotting helper into this test directly.
+#include "cli/gnuplot.cpp"         // NOLINT(bugprone-suspicious-include)
 #include "cli/plot_primitive.cpp"  // NOLINT(bugprone-suspicious-include)
 
 namespace fs = std::filesystem;

@@ -1,5 +1,5 @@
 // ctest-labels: sim integration
-// The jumps on the simulated CENTAURO (issue 5): both primitives planned once with the defaults, replayed by
+// The jumps on the simulated CENTAURO: both primitives planned once with the defaults, replayed by
 // the JumpController with each stabilizer in MuJoCo. Asserted: the outcomes of docs/validation.md, finite
 // commands, position references inside the joint ranges (and small soft-limit penetration in MuJoCo), the
 // force distribution's feed-forward within the effort limits, and the replay's tracking of the planned

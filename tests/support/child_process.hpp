@@ -19,13 +19,18 @@ namespace centaur_test {
 
 class ChildProcess {
  public:
-  /// Starts `program` with `args`; its output goes to `log_path`.
-  ChildProcess(const std::string& program, const std::vector<std::string>& args, std::string log_path)
+  /// Starts `program` with `args` in `working_directory` ("" = the test's); its output goes to `log_path`. SIGINT
+  /// and SIGTERM have their default actions in the child (a shell's background job would ignore SIGINT).
+  ChildProcess(const std::string& program, const std::vector<std::string>& args, std::string log_path,
+               const std::string& working_directory = "")
       : log_path_(std::move(log_path)) {
     std::vector<std::string> storage{program};
     storage.insert(storage.end(), args.begin(), args.end());
     pid_ = ::fork();
     if (pid_ == 0) {
+      ::signal(SIGINT, SIG_DFL);
+      ::signal(SIGTERM, SIG_DFL);
+      if (!working_directory.empty() && ::chdir(working_directory.c_str()) != 0) ::_exit(127);
       const int fd = ::open(log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       if (fd >= 0) {
         ::dup2(fd, 1);
@@ -55,7 +60,8 @@ class ChildProcess {
     if (running()) ::kill(pid_, sig);
   }
 
-  /// Waits up to `timeout_s` for the exit; true if it exited (code() is then valid).
+  /// Waits up to `timeout_s` for the exit; true if it exited (code() is then valid: the exit status, or 128 + the
+  /// signal that ended it).
   bool wait(double timeout_s) {
     if (!running()) return exited_;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);

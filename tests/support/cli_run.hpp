@@ -15,9 +15,11 @@ struct CliRun {
   std::string last_line;  ///< the last line of out (trailing newlines dropped)
 };
 
-/// Runs `CENTAUR_BIN args`; stderr goes into out (merge_stderr) or to /dev/null.
-inline CliRun run(const std::string& args, bool merge_stderr = true) {
-  const std::string cmd = std::string(CENTAUR_BIN) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+/// Runs `CENTAUR_BIN args`; stderr goes into out (merge_stderr) or to /dev/null. With `timeout_s` > 0 the command
+/// is stopped after that many seconds (exit code 124: it hung).
+inline CliRun run(const std::string& args, bool merge_stderr = true, int timeout_s = 0) {
+  const std::string prefix = timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " " : std::string();
+  const std::string cmd = prefix + std::string(CENTAUR_BIN) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* p = popen(cmd.c_str(), "r");
   CliRun r;
   if (p == nullptr) {

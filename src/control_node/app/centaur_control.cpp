@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <iostream>
 
@@ -47,7 +48,14 @@ int main(int argc, char** argv) {
   app.add_option("--flywheel", a.flywheel_file, "jumps, ocp: arm-flywheel plan (centaur plan arm-flywheel)");
   app.add_option("--start-after", a.start_after, "jumps: start the primitive after S seconds of settling "
                                                  "(default: wait for <namespace>/start)")
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(CLI::Range(0.0, 3600.0))
+      ->check(CLI::Validator(  // CLI::Range lets NaN through (every comparison with NaN is false)
+          [](std::string& text) {
+            double v = 0.0;
+            return CLI::detail::lexical_cast(text, v) && std::isfinite(v) ? std::string()
+                                                                           : "value " + text.substr(0, 40) + " is not a finite number";
+          },
+          "FINITE"));
   app.add_option("--config", a.config_file, "node configuration (YAML)")->check(CLI::ExistingFile);
   app.add_option("--set", a.overrides, "override a configuration key: --set middleware.domain=3 (repeatable)");
   app.add_flag("--json", json, "print one JSON summary object as the last line of stdout");
