@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <utility>
 
 #include "cli/command.hpp"
 #include "common/atomic_file.hpp"
@@ -37,8 +38,8 @@ struct PlanArgs {
   std::string warm_start;  // F.h5[:group]
 };
 
-// The start of a warm-started plan: the knots of primitive `group` (default: the one being planned) in `file`.
-Eigen::VectorXd warmStartPoint(const planner::JumpProblem& problem, const PlanArgs& a) {
+/// --warm-start F.h5[:group] as (file, group); the group defaults to the primitive being planned.
+std::pair<std::string, std::string> warmStartSource(const PlanArgs& a) {
   std::string file = a.warm_start, group = a.primitive;
   const auto colon = a.warm_start.rfind(':');
   if (colon != std::string::npos && a.warm_start.find('/', colon) == std::string::npos) {  // F.h5:group
@@ -46,6 +47,12 @@ Eigen::VectorXd warmStartPoint(const planner::JumpProblem& problem, const PlanAr
     group = a.warm_start.substr(colon + 1);
   }
   if (file.empty() || group.empty()) throw InputError("--warm-start '" + a.warm_start + "': expected F.h5[:group]");
+  return {file, group};
+}
+
+// The start of a warm-started plan: the knots of primitive `group` (default: the one being planned) in `file`.
+Eigen::VectorXd warmStartPoint(const planner::JumpProblem& problem, const PlanArgs& a) {
+  const auto [file, group] = warmStartSource(a);
   return problem.decisionVector(data::readPrimitive(file, group), "--warm-start " + file + ":" + group);
 }
 
@@ -121,7 +128,10 @@ int runPlan(const PlanArgs& a) {
     return runArmPlan(a);
   }
   const planner::JumpConfig cfg = planner::loadJumpConfig(a.primitive, a.config, a.overrides);
-  guardOutputs({{"--config", a.config}}, {{"--out", a.out}, {"the effective configuration", sidecarPath(a.out, a.primitive)}});
+  // The warm-start file is an input, unless --append updates that same file in place (its primitives are kept).
+  const std::string warm_file = a.warm_start.empty() || a.append ? "" : warmStartSource(a).first;
+  guardOutputs({{"--config", a.config}, {"--warm-start", warm_file}},
+               {{"--out", a.out}, {"the effective configuration", sidecarPath(a.out, a.primitive)}});
   if (!a.quiet) std::fprintf(stderr, "planning %s (%s) ...\n", a.primitive.c_str(), cfg.source.c_str());
   const planner::JumpProblem problem(cfg);
   if (!a.quiet) {

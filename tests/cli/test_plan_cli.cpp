@@ -108,4 +108,11 @@ TEST(PlanCli, WarmStartFromAMissingFileGroupOrOtherHorizonIsBadInput) {
                 {"short.h5", "nope"});
   expectRefused("plan arm-flywheel --warm-start " + neighbour.string() + " --out " + out.string(), out,
                 {"--warm-start"});
+  // Re-planning into the file the warm start comes from would replace its primitives: refused, the file kept
+  // (with --append that file is updated in place by design).
+  const auto before = fs::last_write_time(neighbour);
+  const CliRun same = run("plan squat-jump --warm-start " + neighbour.string() + " --out " + neighbour.string());
+  EXPECT_EQ(same.code, 2) << same.out;
+  EXPECT_NE(same.out.find("--warm-start"), std::string::npos) << same.out;
+  EXPECT_EQ(fs::last_write_time(neighbour), before);
 }
