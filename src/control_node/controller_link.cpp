@@ -50,7 +50,23 @@ void ControllerLink::takeInputs() {
   robot_status_reader_.take([&](const mw::RobotStatusMsg& m, const dds_sample_info_t&) {
     if (m.mode == mw::kModeFinished && started_) report_.finished = true;
     robot_lockstep_ = m.lockstep;
+    robot_status_seen_ = true;
   });
+}
+
+// The first tick waits for the robot's status: only then is it known which stale time applies (a lockstep robot
+// on a busy machine may take longer than stale_time per period). The robot publishes its status before its first
+// state and again every 100 ms while it waits for the first answer; a robot that publishes no status at all
+// is served after kStatusGrace, then judged by stale_time.
+bool ControllerLink::readyToStart() {
+  constexpr double kStatusGrace = 1.0;  // [s] wall time
+  if (started_ || robot_status_seen_) return true;
+  if (!decoder_.complete()) return false;
+  if (!first_state_seen_) {
+    first_state_seen_ = true;
+    first_state_wall_ = Clock::now();
+  }
+  return std::chrono::duration<double>(Clock::now() - first_state_wall_).count() >= kStatusGrace;
 }
 
 void ControllerLink::tickOnce(std::int64_t state_ns) {
@@ -130,7 +146,7 @@ ControlNodeReport ControllerLink::run(const std::atomic<bool>& stop) {
     const auto wait = std::chrono::duration<double>(started_ ? std::min(settings_.stale_time, 0.1) : 0.1);
     waitset_.wait(std::chrono::duration_cast<std::chrono::nanoseconds>(wait).count());
     takeInputs();
-    while (decoder_.complete()) tickOnce(decoder_.take(state_));
+    while (readyToStart() && decoder_.complete()) tickOnce(decoder_.take(state_));
     checkStale();
     if (!started_ && std::chrono::duration<double>(Clock::now() - begin).count() > settings_.connect_timeout) {
       throw RuntimeError("control: no robot state on " + participant_.rosName(mw::kJointStates) + " within " +

@@ -25,6 +25,7 @@ class ControllerLink {
   void takeInputs();
   void tickOnce(std::int64_t state_ns);
   void checkStale();
+  bool readyToStart();
   void publishStatus(bool force);
 
   SupervisedController& controller_;
@@ -45,6 +46,9 @@ class ControllerLink {
   ControlNodeReport report_;
   bool started_ = false, stale_ = false, trigger_pending_ = false, reset_pending_ = false;
   bool robot_lockstep_ = false;  // the robot's status says lockstep (see lockstep_stale_time)
+  bool robot_status_seen_ = false;  // its mode is known: the stale time to apply is known
+  bool first_state_seen_ = false;
+  std::chrono::steady_clock::time_point first_state_wall_;
   const char* node_safe_reason_ = "";  // set when the node itself asked for the safe mode
   std::string last_phase_;
   bool last_safe_ = false;

@@ -73,6 +73,7 @@ void expectSameRun(const Pair& p, const std::string& what) {
   EXPECT_EQ(p.robot["watchdog_trips"], 0) << what;
   EXPECT_EQ(p.robot["commands_applied"], p.robot["control_periods"]) << what << ": one command per period";
   EXPECT_EQ(p.control["ticks"], p.robot["control_periods"]) << what;
+  EXPECT_EQ(p.control["stale_events"], 0) << what << ": a slow period of a lockstep robot is not a stale state";
 }
 
 }  // namespace
