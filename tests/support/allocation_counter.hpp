@@ -19,6 +19,30 @@ inline std::atomic<long> g_malloc_calls{0};
 inline long heapAllocations() { return g_new_calls.load() + g_malloc_calls.load(); }
 }  // namespace centaur_test
 
+#if defined(__SANITIZE_ADDRESS__)
+#define CENTAUR_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CENTAUR_TEST_ASAN 1
+#endif
+#endif
+
+#ifdef CENTAUR_TEST_ASAN
+// Under AddressSanitizer the allocator is ASan's (interposing malloc would hand its blocks to glibc): every
+// allocation, malloc and operator new alike, is counted by the sanitizer's own allocation hook instead.
+// (declared here as in <sanitizer/allocator_interface.h>, which g++ does not install)
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*, std::size_t),
+                                                         void (*free_hook)(const volatile void*));
+
+namespace centaur_test {
+inline void countAllocation(const volatile void*, std::size_t) {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+}
+inline void ignoreFree(const volatile void*) {}
+inline const bool g_hooks_installed = __sanitizer_install_malloc_and_free_hooks(countAllocation, ignoreFree) != 0;
+}  // namespace centaur_test
+
+#else
 // ---- malloc interposition (glibc exports the real implementations as __libc_*; its declarations are
 //      noexcept in C++, so are these definitions) ----
 extern "C" {
@@ -70,3 +94,4 @@ void operator delete[](void* p) noexcept { __libc_free(p); }
 void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
 void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
 #pragma GCC diagnostic pop
+#endif  // CENTAUR_TEST_ASAN
