@@ -18,6 +18,7 @@
 #include "controller/robot_interface.hpp"
 #include "middleware/dds.hpp"
 #include "middleware/messages.hpp"
+#include "support/dds_peer.hpp"
 #include "support/node_pair.hpp"
 
 using namespace centaur_test;
@@ -25,12 +26,6 @@ namespace mw = centaur::middleware;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-mw::MiddlewareConfig onDomain(int domain) {
-  mw::MiddlewareConfig c;
-  c.domain = domain;
-  return c;
-}
 
 /// Polls the controller status until pred(status) or the timeout; true if it held.
 template <class Pred>
@@ -137,16 +132,7 @@ TEST(NodesFaults, RogueCommandsAreRejectedCountedAndNeverApplied) {
   auto control = startControl(dir, "stand", kDomain, {});
   ASSERT_TRUE(waitForControllerStatus(status, 120.0, [](const auto& s) { return s.ticks > 100; }));
   // A valid-looking command of CENTAURO's 39 joints, then broken one way at a time.
-  std::vector<std::string> names;
-  for (const char* n : {"torso_yaw", "j_arm1_1", "j_arm1_2", "j_arm1_3", "j_arm1_4", "j_arm1_5", "j_arm1_6",
-                        "j_arm1_7", "j_arm2_1", "j_arm2_2", "j_arm2_3", "j_arm2_4", "j_arm2_5", "j_arm2_6",
-                        "j_arm2_7", "hip_yaw_1", "hip_pitch_1", "knee_pitch_1", "ankle_pitch_1", "ankle_yaw_1",
-                        "j_wheel_1", "hip_yaw_2", "hip_pitch_2", "knee_pitch_2", "ankle_pitch_2", "ankle_yaw_2",
-                        "j_wheel_2", "hip_yaw_3", "hip_pitch_3", "knee_pitch_3", "ankle_pitch_3", "ankle_yaw_3",
-                        "j_wheel_3", "hip_yaw_4", "hip_pitch_4", "knee_pitch_4", "ankle_pitch_4", "ankle_yaw_4",
-                        "j_wheel_4"}) {
-    names.emplace_back(n);
-  }
+  const std::vector<std::string>& names = centauroJointNames();
   struct Bad {
     const char* what;
     int drop = 0;          // joints dropped from the end

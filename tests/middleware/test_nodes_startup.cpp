@@ -16,6 +16,7 @@
 #include "middleware/dds.hpp"
 #include "middleware/messages.hpp"
 #include "middleware/state_codec.hpp"
+#include "support/dds_peer.hpp"
 #include "support/node_pair.hpp"
 
 using namespace centaur_test;
@@ -23,23 +24,6 @@ namespace mw = centaur::middleware;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-mw::MiddlewareConfig onDomain(int domain) {
-  mw::MiddlewareConfig c;
-  c.domain = domain;
-  return c;
-}
-
-const std::vector<std::string>& centauroJoints() {
-  static const std::vector<std::string> names = {
-      "torso_yaw",     "j_arm1_1",    "j_arm1_2",     "j_arm1_3",      "j_arm1_4",    "j_arm1_5",    "j_arm1_6",
-      "j_arm1_7",      "j_arm2_1",    "j_arm2_2",     "j_arm2_3",      "j_arm2_4",    "j_arm2_5",    "j_arm2_6",
-      "j_arm2_7",      "hip_yaw_1",   "hip_pitch_1",  "knee_pitch_1",  "ankle_pitch_1", "ankle_yaw_1", "j_wheel_1",
-      "hip_yaw_2",     "hip_pitch_2", "knee_pitch_2", "ankle_pitch_2", "ankle_yaw_2", "j_wheel_2",   "hip_yaw_3",
-      "hip_pitch_3",   "knee_pitch_3", "ankle_pitch_3", "ankle_yaw_3", "j_wheel_3",   "hip_yaw_4",   "hip_pitch_4",
-      "knee_pitch_4",  "ankle_pitch_4", "ankle_yaw_4", "j_wheel_4"};
-  return names;
-}
 
 /// The robot's side of the protocol, played by the test.
 class FakeRobot {
@@ -51,8 +35,8 @@ class FakeRobot {
         status_(participant_, mw::kRobotStatus),
         commands_(participant_, mw::kJointCommand),
         controller_status_(participant_, mw::kControllerStatus),
-        encoder_(centauroJoints(), "imu_link") {
-    const auto n = static_cast<Eigen::Index>(centauroJoints().size());
+        encoder_(centauroJointNames(), "imu_link") {
+    const auto n = static_cast<Eigen::Index>(centauroJointNames().size());
     state_.resize(n);
     state_.q.setZero();
     state_.qd.setZero();
