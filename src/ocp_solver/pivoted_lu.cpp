@@ -3,6 +3,8 @@
 #include <cmath>
 #include <utility>
 
+#include "common/eigen_empty.hpp"
+
 namespace centaur::ocp_solver {
 
 void PivotedLu::compute(const Eigen::Ref<const Eigen::MatrixXd>& m, double tol) {
@@ -39,7 +41,7 @@ void PivotedLu::compute(const Eigen::Ref<const Eigen::MatrixXd>& m, double tol) 
 void PivotedLu::applyRowTransform(Eigen::Ref<Eigen::MatrixXd> y) const {
   const int r = rank_, rows = static_cast<int>(lu_.rows());
   if (r == 0) return;
-  lu_.topLeftCorner(r, r).triangularView<Eigen::UnitLower>().solveInPlace(y.topRows(r));
+  solveInPlaceUnlessEmpty(lu_.topLeftCorner(r, r).triangularView<Eigen::UnitLower>(), y.topRows(r));
   if (rows > r) y.bottomRows(rows - r).noalias() -= lu_.bottomLeftCorner(rows - r, r) * y.topRows(r);
 }
 
@@ -47,7 +49,7 @@ void PivotedLu::applyRowTransformTransposed(Eigen::Ref<Eigen::VectorXd> y) const
   const int r = rank_, rows = static_cast<int>(lu_.rows());
   if (r == 0) return;
   if (rows > r) y.head(r).noalias() -= lu_.bottomLeftCorner(rows - r, r).transpose() * y.tail(rows - r);
-  lu_.topLeftCorner(r, r).triangularView<Eigen::UnitLower>().transpose().solveInPlace(y.head(r));
+  solveInPlaceUnlessEmpty(lu_.topLeftCorner(r, r).triangularView<Eigen::UnitLower>().transpose(), y.head(r));
 }
 
 }  // namespace centaur::ocp_solver

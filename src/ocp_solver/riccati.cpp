@@ -4,6 +4,8 @@
 
 #include <Eigen/SparseCore>
 
+#include "common/eigen_empty.hpp"
+
 namespace centaur::ocp_solver {
 
 namespace {
@@ -21,7 +23,7 @@ void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, E
 void RiccatiSolver::Stage::solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const {
   if (nv == 0) return;
   if (!use_eig) {
-    llt.solveInPlace(rhs);
+    solveInPlaceUnlessEmpty(llt, rhs);
     return;
   }
   const Eigen::VectorXd& d = eig.eigenvalues();
@@ -74,7 +76,7 @@ bool RiccatiSolver::eliminate(Stage& s) {
   s.E.resize(r, w);
   s.E.leftCols(nx) = -X.topRows(r);
   s.E.rightCols(nv) = -s.lu.packed().block(0, r, r, nv);
-  s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().solveInPlace(s.E);
+  solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>(), s.E);
 
   // Reduced Hessian Qh = T' Qp T with T = [I; E]: Qp_WW + E' F + F' E, F = Qp_BW + 1/2 Qp_BB E (lower
   // triangle only, then mirrored).
@@ -97,7 +99,7 @@ bool RiccatiSolver::eliminate(Stage& s) {
     if (s.llt.info() == Eigen::Success) {
       inertia_.positive += nv;
       s.K = s.Qh.bottomLeftCorner(nv, nx);
-      s.llt.matrixL().solveInPlace(s.K);
+      solveInPlaceUnlessEmpty(s.llt.matrixL(), s.K);
     } else {
       if (!opt_.full_inertia) return false;
       s.use_eig = true;
@@ -118,7 +120,7 @@ bool RiccatiSolver::eliminate(Stage& s) {
     } else {
       Eigen::MatrixXd t = s.Qh.bottomLeftCorner(nv, nx);
       s.solveNN(t);
-      s.P.triangularView<Eigen::Lower>() -= s.Qh.topRightCorner(nx, nv) * t;
+      if (nx > 0) s.P.triangularView<Eigen::Lower>() -= s.Qh.topRightCorner(nx, nv) * t;
     }
     s.P.triangularView<Eigen::StrictlyUpper>() = s.P.transpose();
   }
@@ -219,7 +221,7 @@ void RiccatiSolver::backwardVectors(const std::vector<StageQp>& qp) {
     s.gamma.resize(static_cast<int>(s.kept.size()));
     for (std::size_t j = 0; j < s.kept.size(); ++j) s.gamma[static_cast<int>(j)] = ct[r + s.kept[j]];
     s.e = -ct.head(r);
-    s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().solveInPlace(s.e);
+    solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>(), s.e);
     s.qp.resize(n);
     for (int i = 0; i < n; ++i) s.qp[i] = s.q[s.perm[i]];
     s.g = s.qp;
@@ -252,7 +254,8 @@ void RiccatiSolver::stageForward(Stage& s, const Eigen::VectorXd& x, const Eigen
   gfull.noalias() += s.Qp * s.zp;
   s.eta_t.setZero(s.m);
   s.eta_t.head(r) = -gfull.tail(r);
-  s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().transpose().solveInPlace(s.eta_t.head(r));
+  solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().transpose(),
+                          s.eta_t.head(r));
   for (std::size_t j = 0; j < s.kept.size(); ++j) s.eta_t[r + s.kept[j]] = eta_pending[static_cast<int>(j)];
   s.lu.applyRowTransformTransposed(s.eta_t);
   eta_stacked.resize(s.m);
