@@ -95,11 +95,15 @@ fuzz: fuzz-deps
 
 # The whole test suite built with AddressSanitizer + UndefinedBehaviorSanitizer (g++), in its own build directory.
 # -O1 -g1 (line tables: reports name file and line) compiles 1.6x faster than -O2 -g with the same checks.
+# Processes started by mpirun run without leak detection: Open MPI's plugins leak at MPI_Finalize and are unloaded
+# before LeakSanitizer looks, so their stacks cannot be suppressed by library name (the same sweep code runs with
+# leak detection in its threaded tests). Address and UB checks stay on in those processes.
 test-sanitize: deps
 	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
 	  -DCENTAUR_SANITIZE=ON
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	cd $(SANITIZE_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  OMPI_MCA_mca_base_env_list="ASAN_OPTIONS=detect_leaks=0:abort_on_error=1" \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan.supp UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
 	  ctest --output-on-failure -j $(JOBS)
 
