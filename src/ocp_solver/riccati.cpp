@@ -84,7 +84,7 @@ bool RiccatiSolver::eliminate(Stage& s) {
   s.F = s.Qp.block(w, 0, r, w);
   s.F.noalias() += 0.5 * s.Qp.bottomRightCorner(r, r) * s.E;
   s.Qh = s.Qp.topLeftCorner(w, w);
-  if (r > 0) {
+  if (r > 0 && w > 0) {
     s.Qh.triangularView<Eigen::Lower>() += s.E.transpose() * s.F;
     s.Qh.triangularView<Eigen::Lower>() += s.F.transpose() * s.E;
     s.Qh.triangularView<Eigen::StrictlyUpper>() = s.Qh.transpose();
@@ -114,13 +114,13 @@ bool RiccatiSolver::eliminate(Stage& s) {
     }
   }
   s.P = s.Qh.topLeftCorner(nx, nx);
-  if (nv > 0) {
+  if (nv > 0 && nx > 0) {
     if (!s.use_eig) {
       s.P.selfadjointView<Eigen::Lower>().rankUpdate(s.K.transpose(), -1.0);
     } else {
       Eigen::MatrixXd t = s.Qh.bottomLeftCorner(nv, nx);
       s.solveNN(t);
-      if (nx > 0) s.P.triangularView<Eigen::Lower>() -= s.Qh.topRightCorner(nx, nv) * t;
+      s.P.triangularView<Eigen::Lower>() -= s.Qh.topRightCorner(nx, nv) * t;
     }
     s.P.triangularView<Eigen::StrictlyUpper>() = s.P.transpose();
   }
