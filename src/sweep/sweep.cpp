@@ -14,6 +14,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/output_guard.hpp"
 #include "sweep/dispatch.hpp"
 #include "sweep/journal.hpp"
 #include "sweep/planning.hpp"
@@ -38,11 +39,32 @@ struct Prepared {
   std::string flywheel;  ///< "" without mode ocp
 };
 
+std::string heatmapStem(const std::string& x, const std::string& y) { return "heatmap-" + x + "-" + y; }
+
+/// Every file a sweep of `spec` may write into `out` (sweep.yaml only when the sweep is new: a resume only reads
+/// it), for guardOutputs(): the spec must not be one of them.
+std::vector<NamedPath> sweepOutputs(const SweepSpec& spec, const std::string& out, bool resume) {
+  const fs::path d(out);
+  std::vector<NamedPath> files;
+  auto add = [&](const std::string& name) { files.push_back({"--out", (d / name).string()}); };
+  if (!resume) add("sweep.yaml");
+  for (const char* name : {"primitives.h5", "arm-flywheel.h5", "journal.jsonl", "results.h5", "summary.json",
+                           "summary.md", "peak-pitch.dat", "peak-pitch.png", ".lock"}) {
+    add(name);
+  }
+  for (const auto& [x, y] : spec.heatmaps) {
+    add(heatmapStem(x, y) + ".dat");
+    add(heatmapStem(x, y) + ".png");
+  }
+  return files;
+}
+
 /// Steps 1 and 2: spec, DIR, database, arm-flywheel plan.
 Prepared prepare(const SweepOptions& o) {
   Prepared p;
   p.spec = loadSweepSpec(o.spec);
   const std::string canonical = p.spec.canonicalYaml();
+  guardOutputs({{"the spec", o.spec}}, sweepOutputs(p.spec, o.out, checkSweepDir(o.out, canonical)));
   p.dir = std::make_unique<SweepDir>(o.out, canonical);
   std::fprintf(stderr, "sweep: %s %s: %zu grid points x %d seeds x %zu modes = %zu runs\n",
                p.dir->resumed() ? "resuming" : "starting", o.out.c_str(), p.spec.points(), p.spec.seeds,
@@ -122,7 +144,7 @@ SweepReport runAndSummarize(Prepared& p, const MpiSession* mpi, int threads, Clo
   if (!p.flywheel.empty()) report.files.push_back(p.flywheel);
   report.files.insert(report.files.end(), {p.dir->path("journal.jsonl"), p.dir->path("results.h5"), json_path, md_path});
   for (const Heatmap& h : report.summary.heatmaps) {
-    const std::string dat = p.dir->path("heatmap-" + h.x + "-" + h.y + ".dat");
+    const std::string dat = p.dir->path(heatmapStem(h.x, h.y) + ".dat");
     writeTextFileAtomic(dat, heatmapData(h));
     report.heatmap_data.push_back(dat);
     report.files.push_back(dat);

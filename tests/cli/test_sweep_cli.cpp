@@ -28,6 +28,7 @@
 #include "support/temp_dir.hpp"
 #include "sweep/results_file.hpp"
 #include "sweep/run_record.hpp"
+#include "sweep/sweep_spec.hpp"
 
 namespace fs = std::filesystem;
 using centaur_test::CliRun;
@@ -326,4 +327,20 @@ TEST(SweepCli, BadSpecsExit2NamingTheKeyAndWriteNothing) {
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("holds no sweep"), std::string::npos) << r.out;
   EXPECT_EQ(fs::directory_iterator(out)->path().filename(), "notes.txt");
+
+  // The spec is never one of the files the sweep writes: here a copy of the spec named like the summary, in a
+  // DIR that holds this sweep. Resuming from DIR/sweep.yaml itself is allowed (a resume does not write it).
+  const std::string held = dir.file("held");
+  fs::create_directories(held);
+  const std::string canonical = centaur::sweep::loadSweepSpec(good).canonicalYaml();
+  std::ofstream(held + "/sweep.yaml") << canonical;
+  std::ofstream(held + "/summary.md") << canonical;
+  const CliRun clobber = run("sweep " + held + "/summary.md --out " + held);
+  EXPECT_EQ(clobber.code, 2) << clobber.out;
+  EXPECT_NE(clobber.out.find("is the same file as the input the spec"), std::string::npos) << clobber.out;
+  EXPECT_EQ(readFile(held + "/summary.md"), canonical);
+  EXPECT_FALSE(fs::exists(held + "/primitives.h5"));
+  const CliRun resume = run("sweep " + held + "/sweep.yaml --out " + held + " --plan-only");
+  EXPECT_EQ(resume.code, 0) << resume.out;
+  EXPECT_EQ(readFile(held + "/sweep.yaml"), canonical);
 }
