@@ -86,7 +86,10 @@ PrimitiveReplay::PrimitiveReplay(const data::Primitive& p) : name_(p.name) {
 void PrimitiveReplay::sample(double t, ReplaySample& out) const noexcept {
   long i = 0;
   out.running = t >= 0.0 && t < duration_;
-  if (t > 0.0) i = std::min(n_ - 1, static_cast<long>(std::floor(t / dt_ + 1e-9)));
+  if (t > 0.0) {
+    // Clamped as a double: a time far beyond the end (or +inf) must not overflow the conversion to an index.
+    i = static_cast<long>(std::min(static_cast<double>(n_ - 1), std::floor(t / dt_ + 1e-9)));
+  }
   out.index = i;
   for (int k = 0; k < 4; ++k) {
     out.b_p_wheel.col(k) = foot_rel_.row(i).segment<3>(3 * k).transpose();

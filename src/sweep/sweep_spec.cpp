@@ -75,9 +75,12 @@ std::vector<data::GridValue> rangeValues(const YAML::Node& node, const std::stri
   r.get("step", step, 1e-12, 1e9);
   r.finish();
   if (from > to) throw InputError(file, key, "reversed range: from " + exactNumber(from) + " > to " + exactNumber(to));
-  if (r.has("step")) steps = static_cast<int>(std::floor((to - from) / step + 1e-9)) + 1;
+  if (r.has("step")) {
+    const double count = std::floor((to - from) / step + 1e-9) + 1.0;  // checked before it becomes an int
+    if (count > 100000.0) throw InputError(file, key + ".step", "more than 100000 values");
+    steps = static_cast<int>(count);
+  }
   if (steps == 1 && from != to) throw InputError(file, key + ".steps", "1 value needs from == to; give steps >= 2");
-  if (steps > 100000) throw InputError(file, key + ".step", "more than 100000 values");
   std::vector<data::GridValue> out;
   for (int i = 0; i < steps; ++i) {
     data::GridValue v;

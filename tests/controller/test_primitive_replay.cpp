@@ -5,6 +5,8 @@
 // piecewise-constant control, no allocation.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <Eigen/Geometry>
 
 #include "common/error.hpp"
@@ -47,6 +49,18 @@ TEST(PrimitiveReplay, SamplesTheRowAtOrBeforeTAndHoldsTheEnds) {
   EXPECT_EQ(s.index, 1000);
   EXPECT_FALSE(s.running);
   EXPECT_EQ(s.b_v_wheel.norm(), 0.0);
+  // Far beyond the end (t / dt beyond any integer type) and non-finite times: an end sample, never an index
+  // computed from an overflowed conversion.
+  for (double t : {1e300, std::numeric_limits<double>::infinity()}) {
+    replay.sample(t, s);
+    EXPECT_EQ(s.index, 1000) << t;
+    EXPECT_FALSE(s.running) << t;
+  }
+  for (double t : {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    replay.sample(t, s);
+    EXPECT_EQ(s.index, 0) << t;
+    EXPECT_FALSE(s.running) << t;
+  }
 }
 
 TEST(PrimitiveReplay, ContactEventsAndFlagsFollowThePlan) {

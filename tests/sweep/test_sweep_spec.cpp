@@ -75,6 +75,8 @@ TEST(SweepSpec, BadSpecsNameTheKey) {
       {base + "sedes: 3\n", "sedes"},
       {base + "planner: {axes: {target.height: []}}\n", "planner.axes.target.height"},
       {base + "planner: {axes: {target.height: {from: 0.9, to: 0.8, steps: 3}}}\n", "reversed range"},
+      // 10^11 values (beyond int): refused by their count before it is converted to an integer
+      {base + "planner: {axes: {target.height: {from: 0.8, to: 0.9, step: 1e-12}}}\n", "more than 100000 values"},
       {"jumps: [squat-jump]\nmodes: [none, magic]\n", "modes"},
       {base + "seeds: -3\n", "seeds"},
       {base + "planner: {axes: {target.hieght: [0.8]}}\n", "target.hieght"},
