@@ -296,6 +296,15 @@ void readKnots(const Reader& r, hid_t gid, const std::string& k, Primitive& p) {
   const hsize_t nk = r.length(knots.get(), kk + "t", "t", 0, kMaxKnots);
   if (nk == 1) r.fail(kk + "t", "holds one node: the knots are empty or hold at least two nodes");
   const hsize_t ns = nk > 0 ? nk - 1 : 0;
+  if (nk == 0) {
+    // No nodes: the other knot datasets must be empty as well. (A 0 in the shapes asked of the reader below
+    // means "any", which would let a file declare up to the reader's limit of values there.)
+    for (const char* dataset : {"x", "u", "dt"}) {
+      hsize_t values = 1;
+      for (hsize_t d : r.shape(knots.get(), kk + dataset, dataset)) values = d == 0 ? 0 : values;
+      if (values != 0) r.fail(kk + dataset, "holds values but knots/t has no nodes: empty knots are empty throughout");
+    }
+  }
   p.knot_t = r.vector(knots.get(), kk + "t", "t", nk);
   p.knot_x = r.matrix(knots.get(), kk + "x", "x", {nk, nk > 0 ? kNq + kNv : 0});
   p.knot_u = r.matrix(knots.get(), kk + "u", "u", {ns, nk > 0 ? kNuControls : 0});

@@ -127,6 +127,18 @@ TEST(PrimitiveIo, EmptyKnotsAndLargeConfigRoundTrip) {
   const std::string path = dir.file("bare.h5");
   data::writePrimitive(path, p);
   expectSame(p, data::readPrimitive(path, "bare"));
+
+  // Empty knots are empty throughout: with no node in knots/t, a knots dataset that declares values (here 10^8,
+  // unallocated: a small file) is refused by its shape, before any value is read or allocated.
+  for (const char* dataset : {"bare/knots/x", "bare/knots/u", "bare/knots/dt"}) {
+    data::writePrimitive(path, p);
+    replaceDataset(path, dataset, std::string(dataset).back() == 't' ? std::vector<hsize_t>{100000000}
+                                                                     : std::vector<hsize_t>{1000000, 100});
+    const std::string msg = inputErrorOf([&] { data::readPrimitive(path, "bare"); });
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    EXPECT_NE(msg.find(dataset), std::string::npos) << msg;
+    EXPECT_NE(msg.find("knots/t has no nodes"), std::string::npos) << msg;
+  }
 }
 
 TEST(PrimitiveIo, AppendAddsGroupsKeepsOthersAndReplacesSameName) {
