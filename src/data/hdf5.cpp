@@ -459,6 +459,14 @@ std::vector<double> Reader::doubles(hid_t loc, const std::string& key, const std
   Id type(H5Dget_type(ds.get()), H5Tclose);
   const H5T_class_t cls = type.valid() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
   if (cls != H5T_FLOAT && cls != H5T_INTEGER) fail(key, "dataset is not numeric");
+  // A corrupt chunk index can declare more stored bytes than the whole file holds; libhdf5 would allocate a read
+  // buffer of that size. Refused first.
+  hsize_t file_bytes = 0;
+  const hsize_t stored = H5Dget_storage_size(ds.get());
+  if (H5Fget_filesize(file_.get(), &file_bytes) >= 0 && stored > file_bytes) {
+    fail(key, "dataset declares " + std::to_string(stored) + " bytes of storage, more than the whole file (" +
+                  std::to_string(file_bytes) + " bytes): corrupt");
+  }
   std::vector<double> out;
   try {
     out.resize(static_cast<std::size_t>(total));
