@@ -300,9 +300,10 @@ void readKnots(const Reader& r, hid_t gid, const std::string& k, Primitive& p) {
     // No nodes: the other knot datasets must be empty as well. (A 0 in the shapes asked of the reader below
     // means "any", which would let a file declare up to the reader's limit of values there.)
     for (const char* dataset : {"x", "u", "dt"}) {
-      hsize_t values = 1;
-      for (hsize_t d : r.shape(knots.get(), kk + dataset, dataset)) values = d == 0 ? 0 : values;
-      if (values != 0) r.fail(kk + dataset, "holds values but knots/t has no nodes: empty knots are empty throughout");
+      const std::vector<hsize_t> dims = r.shape(knots.get(), kk + dataset, dataset);
+      if (std::find(dims.begin(), dims.end(), hsize_t{0}) == dims.end()) {  // no zero extent: holds values
+        r.fail(kk + dataset, "holds values but knots/t has no nodes: empty knots are empty throughout");
+      }
     }
   }
   p.knot_t = r.vector(knots.get(), kk + "t", "t", nk);
