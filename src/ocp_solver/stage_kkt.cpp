@@ -223,9 +223,13 @@ KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Ei
       if (row.kind == RowKind::kLocal) {  // sparse outer product
         for (const Entry& e1 : row.entries)
           for (const Entry& e2 : row.entries) q.H(e1.col, e2.col) += w * jac[e1.slot] * jac[e2.slot];
-      } else {
+      } else {  // the row after substituting the dynamics: sparse too (a few states and controls)
         rowVector(row, jac, a, shift);
-        q.H.noalias() += w * a * a.transpose();
+        nz_.clear();
+        for (int j = 0; j < a.size(); ++j)
+          if (a[j] != 0.0) nz_.push_back(j);
+        for (int c : nz_)
+          for (int r : nz_) q.H(r, c) += w * a[r] * a[c];
       }
     }
   }

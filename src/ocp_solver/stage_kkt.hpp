@@ -106,6 +106,7 @@ class StageKktSolver final : public KktSolver {
   Eigen::VectorXd dx_diag_, dc_;
   double last_residual_ = 0.0;
   Eigen::VectorXd res_x_, res_c_, ddx_, ddy_;
+  std::vector<int> nz_;                       // nonzero columns of a substituted row
   std::vector<std::vector<int>> exact_rows_;  // per stage: NLP rows kept as rows of C_k
   std::vector<std::vector<int>> penalty_rows_;
   std::vector<StageQp> qp_;
