@@ -1,6 +1,8 @@
 // centaur bench planner [--repeat N] [--json]
 // Cold solves of both jump primitives with the embedded defaults and both OCP backends (interleaved); reports the
-// median wall and CPU solve time, iterations, time per iteration, derivative and factorization time. With --json the last stdout line is one JSON object.
+// median wall and CPU solve time, iterations, time per iteration, derivative and factorization time; then warm
+// re-plans of two neighbouring problems per jump from the default plan (cli/bench_planner.hpp). With --json the
+// last stdout line is one JSON object.
 // centaur bench tick [--ticks N] [--stack FILE] [--json]
 // The whole-body controller's tick (HQP IK + contact detection + force distribution) timed in closed loop on
 // CENTAURO standing in MuJoCo (default stack config/stack_stand.yaml): median / p99 / max of tick() and of its
@@ -17,15 +19,13 @@
 #include <cmath>
 #include <chrono>
 #include <cstdio>
-#include <ctime>
-#include <map>
 
 #include "cli/bench_middleware.hpp"
+#include "cli/bench_planner.hpp"
 #include "cli/command.hpp"
 #include "common/error.hpp"
 #include "common/stats.hpp"
 #include "controller/whole_body_controller.hpp"
-#include "planner/jump_problem.hpp"
 #include "sim/compare_runner.hpp"
 #include "sim/mujoco_robot.hpp"
 #include "sim/sim_config.hpp"
@@ -44,74 +44,6 @@ struct BenchArgs {
   std::vector<std::string> jumps = {"squat-jump", "half-squat-jump"};
   std::vector<std::string> modes = {"none", "raibert", "angmom", "ocp"};
 };
-
-// The solves of one backend (one entry per cold run).
-struct BackendRuns {
-  std::vector<double> wall, cpu, derivatives, factor;
-  int iterations = 0, factorizations = -1;
-  double cost = 0.0;
-  std::string status;
-};
-
-nlohmann::json backendJson(const BackendRuns& r) {
-  nlohmann::json j;
-  j["status"] = r.status;
-  j["iterations"] = r.iterations;
-  j["cost"] = r.cost;
-  j["solve_wall_s_median"] = median(r.wall);
-  j["solve_cpu_s_median"] = median(r.cpu);
-  j["ms_per_iteration"] = r.iterations > 0 ? 1e3 * median(r.wall) / r.iterations : 0.0;
-  j["derivative_wall_s_median"] = median(r.derivatives);
-  if (r.factorizations >= 0) {
-    j["factorizations_per_iteration"] = r.iterations > 0 ? static_cast<double>(r.factorizations) / r.iterations : 0.0;
-    j["factor_wall_s_median"] = median(r.factor);
-  }
-  return j;
-}
-
-// Cold solves with both backends (solver.backend ipopt and riccati), interleaved run by run so that a change of
-// the machine's speed affects both alike. The top-level fields are those of the configured default backend.
-nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
-  const std::vector<std::string> backends = {"ipopt", "riccati"};
-  std::map<std::string, BackendRuns> runs;
-  std::vector<double> setup;
-  std::string default_backend;
-  for (int r = 0; r < repeat; ++r) {
-    for (const std::string& b : backends) {
-      const auto t0 = std::chrono::steady_clock::now();
-      planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", {});
-      default_backend = cfg.solver.backend;
-      cfg.solver.backend = b;
-      const planner::JumpProblem problem(cfg);
-      const auto t1 = std::chrono::steady_clock::now();
-      const std::clock_t c1 = std::clock();
-      const auto res = problem.solve(false);
-      const auto t2 = std::chrono::steady_clock::now();
-      const std::clock_t c2 = std::clock();
-      if (b == default_backend) setup.push_back(std::chrono::duration<double>(t1 - t0).count());
-      BackendRuns& br = runs[b];
-      br.wall.push_back(std::chrono::duration<double>(t2 - t1).count());
-      br.cpu.push_back(static_cast<double>(c2 - c1) / CLOCKS_PER_SEC);
-      br.derivatives.push_back(res.stats.derivative_time_s);
-      br.factor.push_back(res.stats.factor_time_s);
-      br.iterations = res.info.iterations;
-      br.factorizations = res.stats.factorizations;
-      br.cost = res.info.cost;
-      br.status = res.info.status;
-    }
-  }
-  nlohmann::json j = backendJson(runs[default_backend]);
-  j["ms_per_iteration"] = runs[default_backend].iterations > 0
-                              ? 1e3 * median(runs[default_backend].cpu) / runs[default_backend].iterations
-                              : 0.0;  // CPU per iteration, as before the backends
-  j["setup_wall_s_median"] = median(setup);
-  j["repeat"] = repeat;
-  j["backend"] = default_backend;
-  for (const std::string& b : backends) j["backends"][b] = backendJson(runs[b]);
-  const double wi = median(runs["ipopt"].wall), wr = median(runs["riccati"].wall);
-  j["riccati_speedup_wall"] = wr > 0.0 ? wi / wr : 0.0;
-  return j;
-}
 
 // Times every tick() (and the HQP part of it) of the wrapped controller into preallocated buffers.
 class TimedController final : public Controller {
@@ -253,6 +185,18 @@ int runBench(const BenchArgs& a) {
       }
       std::fprintf(stderr, "  %-16s riccati %.2fx faster than ipopt (median wall)\n", p.c_str(),
                    j["riccati_speedup_wall"].get<double>());
+      std::fprintf(stderr, "bench planner %s: warm re-plans of neighbours from the default plan, %d each ...\n",
+                   p.c_str(), a.repeat);
+      out["planner"][p]["warm_replan"] = benchWarmReplan(p, a.repeat);
+      const auto& w = out["planner"][p]["warm_replan"];
+      for (const auto& [b, jb] : w["backends"].items()) {
+        for (const std::string n : w["neighbours"]) {
+          std::fprintf(stderr, "  %-16s %-8s %-26s %s, %d iterations, median solve %.3f s wall, cost %.9g\n",
+                       p.c_str(), b.c_str(), n.c_str(), jb[n]["status"].get<std::string>().c_str(),
+                       jb[n]["iterations"].get<int>(), jb[n]["solve_wall_s_median"].get<double>(),
+                       jb[n]["cost"].get<double>());
+        }
+      }
     }
   }
   if (a.target == "tick") {

@@ -1,0 +1,16 @@
+#pragma once
+// centaur bench planner: the jump OCPs with both backends (solver.backend ipopt and riccati), in one run.
+//   - benchPrimitive: cold solves from the default guess, the backends interleaved run by run;
+//   - benchWarmReplan: re-plans of neighbouring problems (squat jump: target height 0.82 / 0.92 m; half-squat
+//     jump: wall at 0.12 / 0.18 m) warm-started from the knots of the default plan of the same backend
+//     (`centaur plan ... --warm-start`), interleaved the same way.
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace centaur::cli {
+
+nlohmann::json benchPrimitive(const std::string& primitive, int repeat);
+nlohmann::json benchWarmReplan(const std::string& primitive, int repeat);
+
+}  // namespace centaur::cli
