@@ -4,6 +4,8 @@
 BUILD  ?= build
 JOBS   ?= $(shell nproc)
 OUT    ?= out
+# Instruction set of a new build directory, e.g. ARCH=x86-64-v3 (AVX2, faster planner; CMakeLists.txt CENTAUR_ARCH).
+ARCH   ?=
 CENTAUR = $(BUILD)/src/cli/centaur
 
 # Every Debian package the project needs (build, run, render, plot).
@@ -46,7 +48,7 @@ fuzz-deps:
 	@$(call install_missing,$(DEBS) $(FUZZ_DEBS))
 
 $(BUILD)/CMakeCache.txt:
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(if $(ARCH),-DCENTAUR_ARCH=$(ARCH))
 
 configure: deps $(BUILD)/CMakeCache.txt
 
