@@ -38,6 +38,18 @@ nlohmann::json backendJson(const BackendRuns& r) {
   return j;
 }
 
+std::vector<std::string> neighbours(const std::string& primitive) {
+  if (primitive == "half-squat-jump") return {"target.wall_distance=0.12", "target.wall_distance=0.18"};
+  return {"target.height=0.82", "target.height=0.92"};
+}
+
+planner::JumpConfig configWith(const std::string& primitive, const std::string& backend,
+                               const std::vector<std::string>& overrides) {
+  planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", overrides);
+  cfg.solver.backend = backend;
+  return cfg;
+}
+
 }  // namespace
 
 // Cold solves with both backends, interleaved run by run so that a change of the machine's speed affects both
@@ -83,23 +95,7 @@ nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
   return j;
 }
 
-
-namespace {
-
-std::vector<std::string> neighbours(const std::string& primitive) {
-  if (primitive == "half-squat-jump") return {"target.wall_distance=0.12", "target.wall_distance=0.18"};
-  return {"target.height=0.82", "target.height=0.92"};
-}
-
-planner::JumpConfig configWith(const std::string& primitive, const std::string& backend,
-                               const std::vector<std::string>& overrides) {
-  planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", overrides);
-  cfg.solver.backend = backend;
-  return cfg;
-}
-
-}  // namespace
-
+// Warm re-plans of the neighbours, each backend from its own default plan (solved cold once), interleaved.
 nlohmann::json benchWarmReplan(const std::string& primitive, int repeat) {
   const std::vector<std::string> near = neighbours(primitive);
   // The default plan of each backend, the source of its warm starts.
