@@ -60,6 +60,7 @@ Problem randomProblem(unsigned seed, bool convex, double delta_c) {
     if (k > 0 && k % 2 == 0) addRow({X(k, 2), X(k, 0)}, true);  // pure state
     addRow({Uv(k, 0), Uv(k, 1), X(k, 1)}, false);      // inequality
     if (k == 2) addRow({X(k, 0), X(k, 1), X(k + 1, 0), X(k + 1, 1)}, true);  // coupled to the next state
+    if (k == 1) addRow({X(k, 2), Uv(k, 1), X(k + 1, 0)}, false);  // an inequality coupled to the next state
   }
   addRow({X(N, 1), X(N, 2)}, false);
   addRow({X(0, 0), X(N, 0)}, true);  // periodicity
