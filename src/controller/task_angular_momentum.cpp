@@ -18,7 +18,11 @@ void AngularMomentumTask::update() {
   model_.centroidalMomentumMatrix(Ag_);
   A_ = Ag_.bottomRows<3>();
   for (int i : zeroed_) A_.col(6 + i).setZero();
-  b_ = lambda_ > 0.0 ? Eigen::Vector3d(h_d_ / lambda_) : Eigen::Vector3d::Zero();
+  if (lambda_ > 0.0) {
+    b_.head<3>() = h_d_ / lambda_;
+  } else {
+    b_.head<3>().setZero();
+  }
 }
 
 }  // namespace centaur

@@ -57,8 +57,9 @@ void CartesianTask::update() {
     const Eigen::Matrix3d b_R_w = model_.framePose(base_).linear().transpose();
     Jd_ -= Jb_;
     A_.leftCols<6>().setZero();
-    A_.block(0, 6, 3, nv - 6).noalias() = b_R_w * Jd_.block(0, 6, 3, nv - 6);
-    if (orientation_) A_.block(3, 6, 3, nv - 6).noalias() = b_R_w * Jd_.block(3, 6, 3, nv - 6);
+    A_.block<3, Eigen::Dynamic>(0, 6, 3, nv - 6).noalias() = b_R_w * Jd_.block<3, Eigen::Dynamic>(0, 6, 3, nv - 6);
+    if (orientation_)
+      A_.block<3, Eigen::Dynamic>(3, 6, 3, nv - 6).noalias() = b_R_w * Jd_.block<3, Eigen::Dynamic>(3, 6, 3, nv - 6);
   }
   b_.head<3>() = p_ref_ - p;
   if (orientation_) {

@@ -9,8 +9,8 @@ ComTask::ComTask(std::string name, const RobotModel& model) : Task(std::move(nam
 void ComTask::update() {
   model_.comJacobian(J_);
   A_ = J_;
-  b_ = com_d_ - model_.com();
-  if (lambda_ > 0.0) b_ += comdot_ff_ / lambda_;
+  b_.head<3>() = com_d_ - model_.com();
+  if (lambda_ > 0.0) b_.head<3>() += comdot_ff_ / lambda_;
 }
 
 }  // namespace centaur

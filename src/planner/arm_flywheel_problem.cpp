@@ -204,8 +204,8 @@ data::ArmTrajectory ArmFlywheelProblem::toTrajectory(const SolveResult& result) 
     tr.qd.row(j) = qd.transpose();
     tr.qdd.row(j) = a.transpose();
     tr.tau.row(j) = tau.transpose();
-    tr.h_ang.row(j) = model::chainAngularMomentum(chain_, q.data(), qd.data()).transpose();
-    tr.ee_pos.row(j) = model::chainEndEffector(chain_, q.data()).transpose();
+    tr.h_ang.block<1, 3>(j, 0) = model::chainAngularMomentum(chain_, q.data(), qd.data()).transpose();
+    tr.ee_pos.block<1, 3>(j, 0) = model::chainEndEffector(chain_, q.data()).transpose();
   }
   return tr;
 }
