@@ -79,9 +79,19 @@ void expectKktPointsOfTheOther(const Ocp& ocp, const SolverSettings& s, const So
   }
 }
 
-void report(const Variant& v, const SolveResult& ip, const SolveResult& ri) {
+struct Both {
+  SolveResult ip, ri;
+};
+
+// Both backends from the default guess; both must converge. Prints the objectives (the table in docs/planner.md).
+Both solveBoth(const Variant& v, const Ocp& ocp, const SolverSettings& s) {
+  Both r{solveWith(ocp, s, "ipopt"), solveWith(ocp, s, "riccati")};
   std::printf("%s: ipopt %.10g (%d it), riccati %.10g (%d it), relative difference %.1e\n", v.name.c_str(),
-              ip.info.cost, ip.info.iterations, ri.info.cost, ri.info.iterations, relDiff(ri.info.cost, ip.info.cost));
+              r.ip.info.cost, r.ip.info.iterations, r.ri.info.cost, r.ri.info.iterations,
+              relDiff(r.ri.info.cost, r.ip.info.cost));
+  expectConverged(r.ip, "ipopt", s.constr_viol_tol);
+  expectConverged(r.ri, "riccati", s.constr_viol_tol);
+  return r;
 }
 
 class BackendsAgreeVariant : public ::testing::TestWithParam<Variant> {};
@@ -91,26 +101,26 @@ TEST_P(BackendsAgreeVariant, SameOptimumOrBothKktPoints) {
   if (v.primitive == "arm-flywheel") {
     const ArmFlywheelProblem p(loadArmFlywheelConfig("", v.overrides));
     const SolverSettings& s = p.config().solver;
-    const SolveResult ip = solveWith(p.ocp(), s, "ipopt"), ri = solveWith(p.ocp(), s, "riccati");
-    report(v, ip, ri);
-    expectConverged(ip, "ipopt", s.constr_viol_tol);
-    expectConverged(ri, "riccati", s.constr_viol_tol);
-    if (v.expect != Expect::kSame) return expectKktPointsOfTheOther(p.ocp(), s, ip, ri, v.expect);
-    EXPECT_LT(relDiff(ri.info.cost, ip.info.cost), 1e-6) << "a different local optimum";
-    const data::ArmTrajectory a = p.toTrajectory(ip), b = p.toTrajectory(ri);
+    const Both r = solveBoth(v, p.ocp(), s);
+    if (v.expect != Expect::kSame) {
+      expectKktPointsOfTheOther(p.ocp(), s, r.ip, r.ri, v.expect);
+      return;
+    }
+    EXPECT_LT(relDiff(r.ri.info.cost, r.ip.info.cost), 1e-6) << "a different local optimum";
+    const data::ArmTrajectory a = p.toTrajectory(r.ip), b = p.toTrajectory(r.ri);
     EXPECT_LT(maxDiff(a.q, b.q), 1e-3);    // [rad]
     EXPECT_LT(maxDiff(a.tau, b.tau), 1.0);  // [N m]
     return;
   }
   const JumpProblem p(loadJumpConfig(v.primitive, "", v.overrides));
   const SolverSettings& s = p.config().solver;
-  const SolveResult ip = solveWith(p.ocp(), s, "ipopt"), ri = solveWith(p.ocp(), s, "riccati");
-  report(v, ip, ri);
-  expectConverged(ip, "ipopt", s.constr_viol_tol);
-  expectConverged(ri, "riccati", s.constr_viol_tol);
-  if (v.expect != Expect::kSame) return expectKktPointsOfTheOther(p.ocp(), s, ip, ri, v.expect);
-  EXPECT_LT(relDiff(ri.info.cost, ip.info.cost), 1e-6) << "a different local optimum";
-  const data::Primitive a = p.toPrimitive(ip), b = p.toPrimitive(ri);
+  const Both r = solveBoth(v, p.ocp(), s);
+  if (v.expect != Expect::kSame) {
+    expectKktPointsOfTheOther(p.ocp(), s, r.ip, r.ri, v.expect);
+    return;
+  }
+  EXPECT_LT(relDiff(r.ri.info.cost, r.ip.info.cost), 1e-6) << "a different local optimum";
+  const data::Primitive a = p.toPrimitive(r.ip), b = p.toPrimitive(r.ri);
   EXPECT_NEAR(a.t[a.samples() - 1], b.t[b.samples() - 1], 3e-3);  // [s]
   EXPECT_LT(maxDiff(a.base_pos, b.base_pos), 1e-3);                // [m]
   EXPECT_LT(maxDiff(a.foot_pos, b.foot_pos), 1e-3);
