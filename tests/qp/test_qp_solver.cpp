@@ -25,7 +25,8 @@ TEST(QpSolver, UnconstrainedAndBoxAnalytic) {
   // min 1/2 ||x||^2 - a'x, box [0, 1]: x = clamp(a), multipliers y_box = x - a.
   DenseQp qp;
   qp.H = MatrixXd::Identity(3, 3);
-  qp.g = -Eigen::Vector3d(2.0, -1.0, 0.5);
+  qp.g.resize(3);
+  qp.g << -2.0, 1.0, -0.5;
   qp.A_eq.resize(0, 3);
   qp.b_eq.resize(0);
   qp.C.resize(0, 3);

@@ -34,7 +34,7 @@ struct PlanarArm {
     for (int i = 0; i < dof(); ++i) {
       th += q[i];
       const Eigen::Vector2d dp(-lengths[i] * std::sin(th), lengths[i] * std::cos(th));
-      for (int j = 0; j <= i; ++j) J.col(j) += dp;  // link i moves with every joint j <= i
+      for (int j = 0; j <= i; ++j) J.col(j).template head<2>() += dp;  // link i moves with every joint j <= i
     }
   }
 };
@@ -46,7 +46,7 @@ class TipPositionTask : public Task {
       : Task(std::move(name), 2, arm.dof()), arm_(arm), target(Eigen::Vector2d::Zero()) {}
   void update() override {
     arm_.jacobian(A_);
-    b_ = target - arm_.tip();
+    b_.head<2>() = target - arm_.tip();
   }
   const PlanarArm& arm_;
   Eigen::Vector2d target;

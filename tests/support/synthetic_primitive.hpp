@@ -86,7 +86,7 @@ inline data::Primitive makeSyntheticJump(const std::string& name, double offset 
     const double pitch_rate = 0.05 * M_PI * std::cos(M_PI * t);
     const Eigen::Quaterniond quat(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()));
     const Eigen::Vector3d base(x, 0.0, z);
-    p.base_pos.row(i) = base.transpose();
+    p.base_pos.row(i) << base.x(), base.y(), base.z();
     p.base_quat.row(i) << quat.w(), quat.x(), quat.y(), quat.z();
     p.base_vel.row(i) << vx, 0.0, vz;
     p.base_omega.row(i) << 0.0, pitch_rate, 0.0;
