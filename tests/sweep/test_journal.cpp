@@ -22,7 +22,10 @@ RunRecord record(std::int64_t run) {
   RunRecord r;
   r.run = run;
   r.outcome = run % 2 ? "fall" : "success";
-  for (std::size_t i = 0; i < r.metrics.size(); ++i) r.metrics[i] = i == 4 ? std::nan("") : 0.1 * run + 1.0 / (3.0 + i);
+  // Values that need all 17 digits; 0.125 * run is exact, so the value is the same whether or not the compiler
+  // fuses the multiply and add (it may, differently at each inlined call, in a build with FMA).
+  for (std::size_t i = 0; i < r.metrics.size(); ++i)
+    r.metrics[i] = i == 4 ? std::nan("") : 0.125 * static_cast<double>(run) + 1.0 / (3.0 + static_cast<double>(i));
   if (run == 3) r.error = "a message with \"quotes\"\nand a newline";
   return r;
 }
