@@ -18,6 +18,20 @@ void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, E
     for (int i = 0; i < n; ++i) out(i, j) = in(perm[i], perm[j]);
 }
 
+// M = [A B] as a sparse matrix (its exact zeros dropped), reusing the storage of `out`.
+void sparseDynamics(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows, Eigen::SparseMatrix<double>& out) {
+  const int na = static_cast<int>(A.cols()), nb = static_cast<int>(B.cols());
+  out.resize(rows, na + nb);
+  out.reserve(2 * (na + nb) + rows);
+  for (int j = 0; j < na + nb; ++j) {
+    out.startVec(j);
+    const double* col = j < na ? A.col(j).data() : B.col(j - na).data();
+    for (int i = 0; i < rows; ++i)
+      if (col[i] != 0.0) out.insertBack(i, j) = col[i];
+  }
+  out.finalize();
+}
+
 }  // namespace
 
 void RiccatiSolver::Stage::solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const {
@@ -149,10 +163,7 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp) {
     if (next) {
       // Q += M' P M and the next stage's pending rows Gamma M, with the dynamics M = [A B] as a sparse matrix
       // (continuity Jacobians are mostly identity and diagonal blocks).
-      s.M.resize(next->nx, n);
-      s.M.leftCols(d.nx) = d.A;
-      s.M.rightCols(d.nu) = d.B;
-      s.Msp = s.M.sparseView();
+      sparseDynamics(d.A, d.B, next->nx, s.Msp);
       s.PM.noalias() = next->P * s.Msp;
       s.PMt = s.PM.transpose();
       s.Q.noalias() += s.PMt * s.Msp;
@@ -250,10 +261,10 @@ void RiccatiSolver::stageForward(Stage& s, const Eigen::VectorXd& x, const Eigen
   for (int i = 0; i < n; ++i) z[s.perm[i]] = s.zp[i];
   // Multipliers of the stacked rows: the fixed control directions give the independent ones, the pending
   // rows' multipliers come from the previous stage; then back to the original rows.
-  Eigen::VectorXd gfull = s.qp;
-  gfull.noalias() += s.Qp * s.zp;
+  Eigen::VectorXd gb = s.qp.tail(r);  // the gradient's u_B part: only it carries the multipliers
+  gb.noalias() += s.Qp.bottomRows(r) * s.zp;
   s.eta_t.setZero(s.m);
-  s.eta_t.head(r) = -gfull.tail(r);
+  s.eta_t.head(r) = -gb;
   solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().transpose(),
                           s.eta_t.head(r));
   for (std::size_t j = 0; j < s.kept.size(); ++j) s.eta_t[r + s.kept[j]] = eta_pending[static_cast<int>(j)];

@@ -84,7 +84,7 @@ struct RiccatiSolver::Stage {
   Eigen::MatrixXd Gamma;      // pending rows on x passed to the previous stage (kept ones)
   std::vector<int> kept;      // their positions among the dependent rows
   // workspace
-  Eigen::MatrixXd M, PM, PMt, X, F;
+  Eigen::MatrixXd PM, PMt, X, F;
   Eigen::SparseMatrix<double> Msp;
   // vectors of the last solve
   Eigen::VectorXd q, qp, cs, e, qh, kff, p, gamma;
