@@ -16,7 +16,7 @@ const std::vector<std::string> kBackends = {"ipopt", "riccati"};
 
 // The solves of one backend (one entry per cold run).
 struct BackendRuns {
-  std::vector<double> wall, cpu, derivatives, factor;
+  std::vector<double> wall, cpu, derivatives, functions, factor, kkt_solve;
   int iterations = 0, factorizations = -1;
   double cost = 0.0;
   std::string status;
@@ -31,9 +31,11 @@ nlohmann::json backendJson(const BackendRuns& r) {
   j["solve_cpu_s_median"] = median(r.cpu);
   j["ms_per_iteration"] = r.iterations > 0 ? 1e3 * median(r.wall) / r.iterations : 0.0;
   j["derivative_wall_s_median"] = median(r.derivatives);
+  j["function_wall_s_median"] = median(r.functions);
   if (r.factorizations >= 0) {
     j["factorizations_per_iteration"] = r.iterations > 0 ? static_cast<double>(r.factorizations) / r.iterations : 0.0;
     j["factor_wall_s_median"] = median(r.factor);
+    j["kkt_solve_wall_s_median"] = median(r.kkt_solve);
   }
   return j;
 }
@@ -75,7 +77,9 @@ nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
       br.wall.push_back(std::chrono::duration<double>(t2 - t1).count());
       br.cpu.push_back(static_cast<double>(c2 - c1) / CLOCKS_PER_SEC);
       br.derivatives.push_back(res.stats.derivative_time_s);
+      br.functions.push_back(res.stats.function_time_s);
       br.factor.push_back(res.stats.factor_time_s);
+      br.kkt_solve.push_back(res.stats.linear_solve_time_s);
       br.iterations = res.info.iterations;
       br.factorizations = res.stats.factorizations;
       br.cost = res.info.cost;

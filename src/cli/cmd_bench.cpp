@@ -178,8 +178,9 @@ int runBench(const BenchArgs& a) {
                      jb["ms_per_iteration"].get<double>());
         std::fprintf(stderr, ", derivatives %.3f s", jb["derivative_wall_s_median"].get<double>());
         if (jb.contains("factorizations_per_iteration")) {
-          std::fprintf(stderr, ", %.2f factorizations per iteration (%.3f s)",
-                       jb["factorizations_per_iteration"].get<double>(), jb["factor_wall_s_median"].get<double>());
+          std::fprintf(stderr, ", %.2f factorizations per iteration (%.3f s), KKT solves %.3f s",
+                       jb["factorizations_per_iteration"].get<double>(), jb["factor_wall_s_median"].get<double>(),
+                       jb["kkt_solve_wall_s_median"].get<double>());
         }
         std::fprintf(stderr, ", cost %.9g\n", jb["cost"].get<double>());
       }
