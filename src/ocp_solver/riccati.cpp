@@ -32,6 +32,17 @@ void sparseDynamics(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows
   out.finalize();
 }
 
+// out = D S (or out += D S) for a dense D and a sparse S, column by column: out.col(j) += S(k, j) D.col(k) over
+// the nonzeros of column j in their order. The same sums in the same order as Eigen's dense-times-sparse
+// product, vectorized over the rows instead of one strided pass per row.
+template <class Out>
+void denseTimesSparse(const Eigen::MatrixXd& D, const Eigen::SparseMatrix<double>& S, Out&& out, bool add) {
+  for (int j = 0; j < S.outerSize(); ++j) {
+    if (!add) out.col(j).setZero();
+    for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it) out.col(j) += it.value() * D.col(it.index());
+  }
+}
+
 }  // namespace
 
 void RiccatiSolver::Stage::solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const {
@@ -164,10 +175,11 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp) {
       // Q += M' P M and the next stage's pending rows Gamma M, with the dynamics M = [A B] as a sparse matrix
       // (continuity Jacobians are mostly identity and diagonal blocks).
       sparseDynamics(d.A, d.B, next->nx, s.Msp);
-      s.PM.noalias() = next->P * s.Msp;
+      s.PM.resize(next->nx, n);
+      denseTimesSparse(next->P, s.Msp, s.PM, false);
       s.PMt = s.PM.transpose();
-      s.Q.noalias() += s.PMt * s.Msp;
-      if (npend > 0) s.Cs.bottomRows(npend).noalias() = next->Gamma * s.Msp;
+      denseTimesSparse(s.PMt, s.Msp, s.Q, true);
+      if (npend > 0) denseTimesSparse(next->Gamma, s.Msp, s.Cs.bottomRows(npend), false);
       inertia_.positive += next->nx;
       inertia_.negative += next->nx;
     }
