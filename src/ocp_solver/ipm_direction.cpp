@@ -17,9 +17,9 @@ constexpr int kDegenIters = 3;
 // Factor the KKT matrix with the smallest primal regularization delta_w that gives the inertia (n, m, 0);
 // dependent rows get the dual regularization delta_c. After kDegenIters consecutive iterations that needed a
 // delta_w, the first attempt already uses one (the unregularized matrix is then not tried). Ipopt takes this
-// shortcut only when the unregularized matrix was singular, not merely of the wrong inertia; on the jump OCPs,
-// whose KKT matrices have the wrong inertia at almost every iteration, that rule took the squat jump from 77 to
-// 971 iterations, so ours triggers on the wrong inertia too.
+// shortcut only when the unregularized matrix was singular, not merely of the wrong inertia; the jump OCPs' KKT
+// matrices have the wrong inertia at almost every iteration, and always trying the unregularized matrix first
+// took the squat jump from 77 to 971 iterations, so ours triggers on the wrong inertia too.
 bool Ipm::factorWithCorrection() {
   sigma_s_.setZero(m_);
   for (int r = 0; r < m_; ++r) {
