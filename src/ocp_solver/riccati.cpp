@@ -152,13 +152,15 @@ bool RiccatiSolver::eliminate(Stage& s) {
   return true;
 }
 
-RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp) {
+RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
+                                            const std::function<void(int)>& before_stage) {
   const int N = static_cast<int>(qp.size()) - 1;
   st_.resize(N + 2);
   inertia_ = Inertia{};
   failed_stage_ = -1;
   factored_ = false;
   for (int k = N; k >= 0; --k) {
+    if (before_stage) before_stage(k);
     Stage& s = st_[k];
     const StageQp& d = qp[k];
     s.nx = d.nx;

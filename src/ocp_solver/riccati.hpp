@@ -20,6 +20,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
 
+#include <functional>
 #include <vector>
 
 #include "ocp_solver/pivoted_lu.hpp"
@@ -40,7 +41,8 @@ class RiccatiSolver {
 
   /// Factor the matrix part (H, A, B, C) of `qp`. kWrongInertia as soon as a reduced Hessian is not positive
   /// definite (unless full_inertia); kSingular if rows are dependent (the counts are still computed).
-  Status factor(const std::vector<StageQp>& qp);
+  /// before_stage(k), if given, is called before stage k's blocks are first read (stages N..0, in this order).
+  Status factor(const std::vector<StageQp>& qp, const std::function<void(int)>& before_stage = {});
   /// Solve with the right-hand sides (h, b, c) of `qp` (same matrices as the last factor()). Allowed after
   /// kOk or kSingular (dependent rows get zero multipliers) and after kWrongInertia with full_inertia.
   void solve(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol);

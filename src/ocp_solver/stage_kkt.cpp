@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <thread>
 
 namespace centaur::ocp_solver {
 
@@ -131,11 +132,14 @@ void StageKktSolver::analyzeCarried(const SparsePattern& p) {
     }
     if (row.kind != RowKind::kDynamics) stage_rows_[row.stage].push_back(r);
   }
+  hess_entries_.assign(N_ + 1, {});
   for (std::size_t t = 0; t < p.hess_rows.size(); ++t) {
     const int a = p.hess_rows[t], b = p.hess_cols[t];
     const int s = std::max(layout_.stage[a], layout_.stage[b]);
-    hess_entries_.push_back(HessEntry{static_cast<int>(t), s, colOf(s, a), colOf(s, b)});
+    hess_entries_[s].push_back(HessEntry{static_cast<int>(t), s, colOf(s, a), colOf(s, b)});
   }
+  stage_vars_.assign(N_ + 1, {});
+  for (int v = 0; v < n_; ++v) stage_vars_[layout_.stage[v]].push_back(v);
   fixed_cols_.assign(N_ + 1, {});
   for (int v = 0; v < n_; ++v)
     if (fixed_[v]) fixed_cols_[layout_.stage[v]].push_back(colOf(layout_.stage[v], v));
@@ -162,43 +166,40 @@ void StageKktSolver::rowVector(const Row& row, const double* jac, Eigen::VectorX
   }
 }
 
-KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
-                                 const Eigen::VectorXd& dc) {
-  jac_ = jac;
-  hess_ = hess;
-  dx_diag_ = dx;
-  dc_ = dc;
-  for (int k = 0; k <= N_; ++k) {
-    exact_rows_[k].clear();
-    penalty_rows_[k].clear();
-    for (int r : stage_rows_[k]) (dc[r] > 0.0 ? penalty_rows_[k] : exact_rows_[k]).push_back(r);
-    const int m = static_cast<int>(fixed_cols_[k].size() + exact_rows_[k].size());
-    const int nxa = nx_[k] + static_cast<int>(carried_[k].size());
-    const int nxn = k < N_ ? nx_[k + 1] + static_cast<int>(carried_[k + 1].size()) : 0;
-    qp_[k].resize(nxa, nu_[k], m, nxn);
+void StageKktSolver::setPipelined(bool on) {
+  if (on && !pipe_) pipe_ = std::make_unique<Pipeline>();
+  if (!on) pipe_.reset();
+}
+
+void StageKktSolver::fillStage(int k, Eigen::VectorXd& a) {
+  StageQp& q = qp_[k];
+  exact_rows_[k].clear();
+  penalty_rows_[k].clear();
+  for (int r : stage_rows_[k]) (dc_[r] > 0.0 ? penalty_rows_[k] : exact_rows_[k]).push_back(r);
+  const int m = static_cast<int>(fixed_cols_[k].size() + exact_rows_[k].size());
+  const int nxa = nx_[k] + static_cast<int>(carried_[k].size());
+  const int nxn = k < N_ ? nx_[k + 1] + static_cast<int>(carried_[k + 1].size()) : 0;
+  q.resize(nxa, nu_[k], m, nxn);
+  for (const HessEntry& h : hess_entries_[k]) {
+    q.H(h.r, h.c) += hess_[h.slot];
+    if (h.r != h.c) q.H(h.c, h.r) += hess_[h.slot];
   }
-  for (const HessEntry& h : hess_entries_) {
-    Eigen::MatrixXd& H = qp_[h.stage].H;
-    H(h.r, h.c) += hess[h.slot];
-    if (h.r != h.c) H(h.c, h.r) += hess[h.slot];
-  }
-  for (int v = 0; v < n_; ++v) {
-    const int s = layout_.stage[v], c = colOf(s, v);
-    qp_[s].H(c, c) += fixed_[v] ? 1.0 : dx[v];
+  for (int v : stage_vars_[k]) {
+    const int c = colOf(k, v);
+    q.H(c, c) += fixed_[v] ? 1.0 : dx_diag_[v];
   }
   // Dynamics x_{k+1} = A z_k + b, scaled by the entry d on x_{k+1}; carried variables are copied.
-  for (int k = 0; k < N_; ++k) {
-    StageQp& q = qp_[k];
+  if (k < N_) {
     for (int j = 0; j < nx_[k + 1]; ++j) {
       const Row& row = rows_[dyn_rows_[k][j]];
       double d = 0.0;
       for (const Entry& e : row.entries)
-        if (e.next) d += jac[e.slot];
+        if (e.next) d += jac_[e.slot];
       diag_[dyn_rows_[k][j]] = d;
       for (const Entry& e : row.entries) {
         if (e.next) continue;
-        if (e.col < q.nx) q.A(j, e.col) -= jac[e.slot] / d;
-        else q.B(j, e.col - q.nx) -= jac[e.slot] / d;
+        if (e.col < q.nx) q.A(j, e.col) -= jac_[e.slot] / d;
+        else q.B(j, e.col - q.nx) -= jac_[e.slot] / d;
       }
     }
     for (std::size_t c = 0; c < carried_[k + 1].size(); ++c) {
@@ -207,33 +208,56 @@ KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Ei
       else q.B(dst, src - q.nx) = 1.0;
     }
   }
-  Eigen::VectorXd a;
   double shift = 0.0;
-  for (int k = 0; k <= N_; ++k) {
-    StageQp& q = qp_[k];
-    int i = 0;
-    for (int c : fixed_cols_[k]) q.C(i++, c) = 1.0;
-    for (int r : exact_rows_[k]) {
-      rowVector(rows_[r], jac, a, shift);
-      q.C.row(i++) = a.transpose();
-    }
-    for (int r : penalty_rows_[k]) {
-      const Row& row = rows_[r];
-      const double w = 1.0 / dc[r];
-      if (row.kind == RowKind::kLocal) {  // sparse outer product
-        for (const Entry& e1 : row.entries)
-          for (const Entry& e2 : row.entries) q.H(e1.col, e2.col) += w * jac[e1.slot] * jac[e2.slot];
-      } else {  // the row after substituting the dynamics: sparse too (a few states and controls)
-        rowVector(row, jac, a, shift);
-        nz_.clear();
-        for (int j = 0; j < a.size(); ++j)
-          if (a[j] != 0.0) nz_.push_back(j);
-        for (int c : nz_)
-          for (int r : nz_) q.H(r, c) += w * a[r] * a[c];
-      }
+  int i = 0;
+  for (int c : fixed_cols_[k]) q.C(i++, c) = 1.0;
+  for (int r : exact_rows_[k]) {
+    rowVector(rows_[r], jac_, a, shift);
+    q.C.row(i++) = a.transpose();
+  }
+  for (int r : penalty_rows_[k]) {
+    const Row& row = rows_[r];
+    const double w = 1.0 / dc_[r];
+    if (row.kind == RowKind::kLocal) {  // sparse outer product
+      for (const Entry& e1 : row.entries)
+        for (const Entry& e2 : row.entries) q.H(e1.col, e2.col) += w * jac_[e1.slot] * jac_[e2.slot];
+    } else {  // the row after substituting the dynamics: sparse too (a few states and controls)
+      rowVector(row, jac_, a, shift);
+      nz_.clear();
+      for (int j = 0; j < a.size(); ++j)
+        if (a[j] != 0.0) nz_.push_back(j);
+      for (int c : nz_)
+        for (int r2 : nz_) q.H(r2, c) += w * a[r2] * a[c];
     }
   }
-  switch (riccati_.factor(qp_)) {
+}
+
+KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
+                                 const Eigen::VectorXd& dc) {
+  jac_ = jac;
+  hess_ = hess;
+  dx_diag_ = dx;
+  dc_ = dc;
+  RiccatiSolver::Status st;
+  if (pipe_) {
+    // The worker fills stages N..0 in the order the recursion visits them; the recursion waits for each.
+    Pipeline& pl = *pipe_;
+    pl.lowest_filled.store(N_ + 1, std::memory_order_relaxed);
+    pl.worker.run([this, &pl] {
+      for (int k = N_; k >= 0; --k) {
+        fillStage(k, fill_a_);
+        pl.lowest_filled.store(k, std::memory_order_release);
+      }
+    });
+    st = riccati_.factor(qp_, [&pl](int k) {
+      while (pl.lowest_filled.load(std::memory_order_acquire) > k) std::this_thread::yield();
+    });
+    pl.worker.wait();  // also after an early stop: solve() and the next factor() need every stage
+  } else {
+    for (int k = N_; k >= 0; --k) fillStage(k, fill_a_);
+    st = riccati_.factor(qp_);
+  }
+  switch (st) {
     case RiccatiSolver::Status::kOk: return KktStatus::kOk;
     case RiccatiSolver::Status::kSingular: return KktStatus::kSingular;
     default: return KktStatus::kWrongInertia;

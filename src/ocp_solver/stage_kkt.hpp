@@ -13,9 +13,13 @@
 // Fixed variables become unit rows. Inequality rows (d_c > 0) are penalties added to the stage Hessians; equality
 // rows are exact, or penalties under a dual regularization (d_c > 0), except the dynamics, which stay exact.
 // The structure is analysed once; factor() scatters the values into preallocated stage blocks.
+#include <atomic>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "common/worker_thread.hpp"
 
 #include "ocp_solver/kkt_system.hpp"
 #include "ocp_solver/riccati.hpp"
@@ -47,6 +51,9 @@ class StageKktSolver final : public KktSolver {
   /// relative residual is below 1e-12: rows whose controls were nearly dependent are passed to the previous
   /// stage by the recursion, which leaves an error of the size of the pivot threshold.
   void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy) override;
+  /// Fill the stage blocks on a second thread, each stage just before the recursion reaches it (the scattering of
+  /// the sparse values then overlaps the factorization; the results are bit-identical to the sequential ones).
+  void setPipelined(bool on);
   /// Relative residual of the last solve (after refinement).
   double lastResidual() const { return last_residual_; }
   int max_refinement = 3;
@@ -79,6 +86,8 @@ class StageKktSolver final : public KktSolver {
   void analyzeRows(const SparsePattern& p, const std::vector<char>& equality);
   void analyzeCarried(const SparsePattern& p);
   void rowVector(const Row& row, const double* jac, Eigen::VectorXd& a, double& rhs_shift) const;
+  /// Scatter the values of stage k into qp_[k] (and the dynamics scales of its rows); touches no other stage.
+  void fillStage(int k, Eigen::VectorXd& a);
   void solveOnce(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy);
   /// r = rhs - K [dx; dy]; returns the scale max(|rhs|, |K| |[dx; dy]|) for the relative residual.
   double residual(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, const Eigen::VectorXd& dx,
@@ -96,7 +105,8 @@ class StageKktSolver final : public KktSolver {
   std::vector<Row> rows_;
   std::vector<std::vector<int>> dyn_rows_;   // per stage k < N: NLP row of each x_{k+1} component
   std::vector<std::vector<int>> stage_rows_; // per stage: local and coupled NLP rows owned by it
-  std::vector<HessEntry> hess_entries_;
+  std::vector<std::vector<HessEntry>> hess_entries_;  // per stage, in the order of the Hessian's nonzeros
+  std::vector<std::vector<int>> stage_vars_;           // per stage: its variables
   std::vector<std::vector<int>> fixed_cols_; // per stage: columns of fixed variables (unit rows)
 
   // values of the last factor()
@@ -113,6 +123,12 @@ class StageKktSolver final : public KktSolver {
   std::vector<StageSolution> sol_;
   RiccatiSolver riccati_;
   Eigen::VectorXd diag_;                      // dynamics row scale d (entry on x_{k+1})
+  Eigen::VectorXd fill_a_;                    // row scratch of fillStage()
+  struct Pipeline {
+    common::WorkerThread worker;
+    std::atomic<int> lowest_filled{0};        // stages lowest_filled..N are filled
+  };
+  std::unique_ptr<Pipeline> pipe_;
 };
 
 }  // namespace centaur::ocp_solver

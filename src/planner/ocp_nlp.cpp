@@ -21,7 +21,7 @@ OcpNlp::OcpNlp(const Ocp& ocp, bool user_scaling, const Eigen::VectorXd* x0, int
     for (int i = 0; i < ocp.numConstraintTerms(); ++i) total += ocp.constraintTermWork(i);
     split_c_ = 0;
     while (split_c_ < ocp.numConstraintTerms() && acc < 0.5 * total) acc += ocp.constraintTermWork(split_c_++);
-    worker_ = std::make_unique<WorkerThread>();
+    worker_ = std::make_unique<common::WorkerThread>();
     jac1_.resize(ocp.jacobianNonzeros());
     hess1_.resize(ocp.hessianNonzeros());
   }

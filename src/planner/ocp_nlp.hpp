@@ -6,7 +6,7 @@
 #include "ocp_solver/nlp.hpp"
 #include "ocp_solver/stage_kkt.hpp"
 #include "planner/ocp.hpp"
-#include "planner/worker_thread.hpp"
+#include "common/worker_thread.hpp"
 
 namespace centaur::planner {
 
@@ -34,7 +34,7 @@ class OcpNlp final : public ocp_solver::Nlp {
   bool user_scaling_;
   Eigen::VectorXd x0_;
   ocp_solver::SparsePattern pattern_;
-  std::unique_ptr<WorkerThread> worker_;
+  std::unique_ptr<common::WorkerThread> worker_;
   int split_c_ = 0, split_k_ = 0;  // terms [0, split) on the caller, the rest on the worker
   Ocp::Scratch scratch_[2];
   Eigen::VectorXd grad1_;

@@ -22,6 +22,7 @@ SolveResult solveWithRiccati(const Ocp& ocp, const SolverSettings& s, const Eige
   } catch (const ocp_solver::StructureError& e) {
     throw RuntimeError(std::string("solver.backend riccati: ") + e.what() + " (use solver.backend: ipopt)");
   }
+  kkt->setPipelined(std::thread::hardware_concurrency() >= 2);
   ocp_solver::IpmOptions o;
   o.tol = s.tol;
   o.constr_viol_tol = s.constr_viol_tol;

@@ -58,6 +58,14 @@ void compareWithDense(const Ocp& ocp, unsigned seed, double dxv = 50.0, double l
   // ~1e-6 of its largest at the guess), so they are checked through the residual; the step agrees.
   const double scale = 1.0 + rxd.cwiseAbs().maxCoeff();
   EXPECT_LT((sx - rxd).cwiseAbs().maxCoeff() / scale, 1e-6);
+  // Filled on a second thread ahead of the recursion (as the planner runs it): the same step to the last bit.
+  ocp_solver::StageKktSolver p(nlp.pattern(), nlp.stageLayout(), nlp.fixedVariables(), eq);
+  p.setPipelined(true);
+  ASSERT_EQ(p.factor(hess.data(), jac.data(), dx, dc), ocp_solver::KktStatus::kOk);
+  Eigen::VectorXd px, py;
+  p.solve(rx, rc, px, py);
+  EXPECT_EQ(px, sx);
+  EXPECT_EQ(py, sy);
 }
 
 std::vector<std::string> shortHorizon() {

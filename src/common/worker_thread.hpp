@@ -1,12 +1,13 @@
 #pragma once
-// One extra thread that runs a job on demand while the caller does its own share (the derivatives of an OCP are
-// split between the two cores of the planning machine). The thread lives as long as the object.
+// One extra thread that runs a job on demand while the caller does its own share (the planner splits the
+// derivatives of an OCP and the assembly of its stage-wise KKT system over two cores). The thread lives as long as
+// the object.
 #include <condition_variable>
 #include <functional>
 #include <mutex>
 #include <thread>
 
-namespace centaur::planner {
+namespace centaur::common {
 
 class WorkerThread {
  public:
@@ -60,4 +61,4 @@ class WorkerThread {
   std::thread thread_;
 };
 
-}  // namespace centaur::planner
+}  // namespace centaur::common
