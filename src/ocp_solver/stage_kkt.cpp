@@ -136,7 +136,7 @@ void StageKktSolver::analyzeCarried(const SparsePattern& p) {
   for (std::size_t t = 0; t < p.hess_rows.size(); ++t) {
     const int a = p.hess_rows[t], b = p.hess_cols[t];
     const int s = std::max(layout_.stage[a], layout_.stage[b]);
-    hess_entries_[s].push_back(HessEntry{static_cast<int>(t), s, colOf(s, a), colOf(s, b)});
+    hess_entries_[s].push_back(HessEntry{static_cast<int>(t), colOf(s, a), colOf(s, b)});
   }
   stage_vars_.assign(N_ + 1, {});
   for (int v = 0; v < n_; ++v) stage_vars_[layout_.stage[v]].push_back(v);
@@ -171,8 +171,9 @@ void StageKktSolver::setPipelined(bool on) {
   if (!on) pipe_.reset();
 }
 
-void StageKktSolver::fillStage(int k, Eigen::VectorXd& a) {
+void StageKktSolver::fillStage(int k) {
   StageQp& q = qp_[k];
+  Eigen::VectorXd& a = fill_a_;
   exact_rows_[k].clear();
   penalty_rows_[k].clear();
   for (int r : stage_rows_[k]) (dc_[r] > 0.0 ? penalty_rows_[k] : exact_rows_[k]).push_back(r);
@@ -245,7 +246,7 @@ KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Ei
     pl.lowest_filled.store(N_ + 1, std::memory_order_relaxed);
     pl.worker.run([this, &pl] {
       for (int k = N_; k >= 0; --k) {
-        fillStage(k, fill_a_);
+        fillStage(k);
         pl.lowest_filled.store(k, std::memory_order_release);
       }
     });
@@ -254,7 +255,7 @@ KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Ei
     });
     pl.worker.wait();  // also after an early stop: solve() and the next factor() need every stage
   } else {
-    for (int k = N_; k >= 0; --k) fillStage(k, fill_a_);
+    for (int k = N_; k >= 0; --k) fillStage(k);
     st = riccati_.factor(qp_);
   }
   switch (st) {

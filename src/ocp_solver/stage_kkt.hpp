@@ -78,8 +78,8 @@ class StageKktSolver final : public KktSolver {
     int comp = -1;      // dynamics: component of x_{k+1}
     std::vector<Entry> entries;
   };
-  struct HessEntry {
-    int slot, stage, r, c;
+  struct HessEntry {  // one Hessian nonzero's destination in its stage's H
+    int slot, r, c;
   };
 
   int colOf(int stage, int var) const;  // column of a variable in a stage's augmented z (-1 if absent)
@@ -87,7 +87,7 @@ class StageKktSolver final : public KktSolver {
   void analyzeCarried(const SparsePattern& p);
   void rowVector(const Row& row, const double* jac, Eigen::VectorXd& a, double& rhs_shift) const;
   /// Scatter the values of stage k into qp_[k] (and the dynamics scales of its rows); touches no other stage.
-  void fillStage(int k, Eigen::VectorXd& a);
+  void fillStage(int k);
   void solveOnce(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy);
   /// r = rhs - K [dx; dy]; returns the scale max(|rhs|, |K| |[dx; dy]|) for the relative residual.
   double residual(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, const Eigen::VectorXd& dx,
