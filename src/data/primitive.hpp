@@ -51,6 +51,13 @@ struct Primitive {
   RowMatrix knot_u;         ///< N_s x nu_ctrl  controls [nu_dot(18), F(12), dt(1)]
   Eigen::VectorXd knot_dt;  ///< N_s    step sizes [s]
 
+  // ---- the solver's multipliers at the knots (optional: all empty when not known) ---------------
+  // In the order of the OCP that was solved (its constraint rows, its decision variables); a warm start of a
+  // neighbour with the same OCP structure starts from them (docs/planner.md, "Warm start").
+  Eigen::VectorXd mult_constraints;  ///< m  constraint multipliers y (Lagrangian f + y^T g)
+  Eigen::VectorXd mult_lower;        ///< n  lower-bound multipliers of the decision variables (>= 0)
+  Eigen::VectorXd mult_upper;        ///< n  upper-bound multipliers of the decision variables (>= 0)
+
   // ---- metadata (written as HDF5 attributes of the group) ---------------------------------------
   SolveInfo solve;
   std::string config_yaml;                               ///< the effective configuration

@@ -17,6 +17,7 @@
 #include "common/excerpt.hpp"
 #include "data/hdf5.hpp"
 #include "data/sim_log_file.hpp"
+#include "data/solver_multipliers_io.hpp"
 
 namespace centaur::data {
 namespace {
@@ -134,6 +135,7 @@ void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
                 {"SI", "W (nu_dot base, forces), B (qddot_C)",
                  "OCP controls u_k, piecewise constant over each interval"});
     writeVector(w, k.get(), p, "dt", p.knot_dt, ns, {"s", nullptr, "interval durations dt_k (N_s)"});
+    writeSolverMultipliers(w, k.get(), p);
   }
 
   // metadata
@@ -313,6 +315,7 @@ void readKnots(const Reader& r, hid_t gid, const std::string& k, Primitive& p) {
   r.requireFinite(kk + "x", p.knot_x);
   r.requireFinite(kk + "u", p.knot_u);
   r.requireFinite(kk + "dt", p.knot_dt);
+  readSolverMultipliers(r, knots.get(), kk, p);
   if (nk == 0) return;
   r.requireTimeAxis(kk + "t", p.knot_t, {2, true, false, 1e-6, 100.0});
   const double scale = 1e-9 * (1.0 + std::abs(p.knot_t[static_cast<Eigen::Index>(ns)]));
