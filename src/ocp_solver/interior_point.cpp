@@ -242,6 +242,20 @@ void Ipm::leastSquaresMultipliers() {
   if (m_ > 0 && y.allFinite() && y.cwiseAbs().maxCoeff() <= opt_.constr_mult_init_max) y_ = y;
 }
 
+// The bound multipliers of a primal-dual warm start (scaled as x), and those of the slacks from the sign of
+// y (the slack rows of the dual residual, -y - v_l + v_u = 0, hold at the neighbour's solution).
+void Ipm::warmMultipliers() {
+  const double floor = warm_->mult_bound_push;
+  for (int i = 0; i < n_; ++i) {
+    if (has_xl_[i]) zl_[i] = std::max(warm_->z_l[i] * D_[i], floor);
+    if (has_xu_[i]) zu_[i] = std::max(warm_->z_u[i] * D_[i], floor);
+  }
+  for (int r = 0; r < m_; ++r) {
+    if (has_gl_[r]) vl_[r] = std::max(-warm_->y[r], floor);
+    if (has_gu_[r]) vu_[r] = std::max(warm_->y[r], floor);
+  }
+}
+
 void Ipm::initialize() {
   setupProblem();
   const bool warm = warm_ != nullptr && warm_->x.size() == n_;
@@ -254,7 +268,8 @@ void Ipm::initialize() {
   if (!evalFunctions(x_, f_, g_)) throw std::runtime_error("interior point: the initial point cannot be evaluated");
   s_ = g_;
   pushIntoBounds(s_, gl_, gu_, has_gl_, has_gu_, push, frac);
-  mu_ = warm ? warm_->mu_init : opt_.mu_init;
+  const bool primal_dual = warm && warm_->hasMultipliers(n_, m_);
+  mu_ = primal_dual ? warm_->mu_init_primal_dual : warm ? warm_->mu_init : opt_.mu_init;
   tau_ = std::max(kTauMin, 1.0 - mu_);
   zl_.setZero(n_);
   zu_.setZero(n_);
@@ -269,6 +284,7 @@ void Ipm::initialize() {
     if (has_gl_[r]) vl_[r] = compl_mult ? mu_ / (s_[r] - gl_[r]) : opt_.bound_mult_init;
     if (has_gu_[r]) vu_[r] = compl_mult ? mu_ / (gu_[r] - s_[r]) : opt_.bound_mult_init;
   }
+  if (primal_dual) warmMultipliers();
   y_.setZero(m_);
   grad_.resize(n_);
   if (!evalDerivatives()) throw std::runtime_error("interior point: the initial derivatives cannot be evaluated");
@@ -282,7 +298,7 @@ void Ipm::initialize() {
   const double th = theta(g_, s_);
   filter_.reset(1e4 * std::max(1.0, th));
   theta_min_ = 1e-4 * std::max(1.0, th);
-  adaptive_ = opt_.mu_strategy == "adaptive";
+  adaptive_ = opt_.mu_strategy == "adaptive" && !primal_dual;
   free_mode_ = true;
   progress_filter_.reset(std::numeric_limits<double>::infinity());
   mu_max_ = 0.0;

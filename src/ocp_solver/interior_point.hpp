@@ -39,12 +39,20 @@ struct IpmOptions {
   bool progress = false;           ///< one line per iteration on stderr
 };
 
-/// Start from a known primal-dual point (a neighbouring solution): multipliers may be empty (then estimated).
+/// Start from a known point (a neighbouring solution). With `x` alone, the multipliers start as in a cold solve
+/// (bound_mult_init, least-squares y) and the barrier parameter at `mu_init`. With the neighbour's multipliers
+/// as well (`y`, `z_l`, `z_u` all sized), the bound multipliers start from them (at least `mult_bound_push`),
+/// the slack multipliers from y, and the barrier parameter decreases monotonically from `mu_init_primal_dual`:
+/// the start is then already near the end of the neighbour's central path, which the adaptive rule would first
+/// re-centre (Ipopt's warm_start_init_point with mu_strategy monotone).
 struct WarmStart {
-  Eigen::VectorXd x, y, z_l, z_u;  ///< unscaled
-  double mu_init = 1e-4;           ///< barrier parameter to start from
+  Eigen::VectorXd x, y, z_l, z_u;  ///< unscaled; y, z_l, z_u may be empty
+  double mu_init = 1e-4;           ///< barrier parameter to start from (x alone)
+  double mu_init_primal_dual = 1e-8;  ///< barrier parameter to start from (x and multipliers)
   double bound_push = 1e-6;        ///< how far x is pushed off its bounds (relative, as bound_push)
-  bool complementary_multipliers = false;  ///< bound multipliers mu / slack (else bound_mult_init, as Ipopt)
+  double mult_bound_push = 1e-3;   ///< floor of the bound and slack multipliers taken from z_l, z_u, y
+  bool complementary_multipliers = false;  ///< x alone: bound multipliers mu / slack (else bound_mult_init)
+  bool hasMultipliers(int n, int m) const { return y.size() == m && z_l.size() == n && z_u.size() == n; }
 };
 
 enum class IpmStatus {

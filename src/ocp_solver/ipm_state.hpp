@@ -26,6 +26,7 @@ class Ipm {
   Vec unscaled(const Vec& x) const { return x.cwiseProduct(D_); }
   // iterate
   void initialize();
+  void warmMultipliers();  // bound and slack multipliers of a primal-dual warm start
   void pushIntoBounds(Vec& v, const Vec& lo, const Vec& hi, const std::vector<char>& has_lo,
                       const std::vector<char>& has_hi, double push, double frac) const;
   void leastSquaresMultipliers();

@@ -64,11 +64,11 @@ struct LambdaNlp : Nlp {
   }
 };
 
-IpmResult solve(LambdaNlp& nlp, IpmOptions opt = {}) {
+IpmResult solve(LambdaNlp& nlp, IpmOptions opt = {}, const WarmStart* warm = nullptr) {
   std::vector<char> fixed(nlp.n);
   for (int i = 0; i < nlp.n; ++i) fixed[i] = nlp.xl[i] == nlp.xu[i];
   DenseKktSolver kkt(nlp.p, fixed);
-  return solveInteriorPoint(nlp, kkt, opt);
+  return solveInteriorPoint(nlp, kkt, opt, warm);
 }
 
 LambdaNlp hs071() {
@@ -132,6 +132,46 @@ TEST(InteriorPoint, Hs071ReachesTheKnownOptimum) {
     EXPECT_LT(r.constraint_violation, 1.01 * opt.bound_relax_factor * 25.0);
     EXPECT_LT(r.stats.iterations, 20) << mode;  // Ipopt: 8
   }
+}
+
+// A neighbour of HS071 (the product constraint >= 24 instead of 25, its optimum elsewhere) warm-starts HS071:
+// from its x alone, and from its x and multipliers. Both reach HS071's optimum; the primal-dual start, already
+// near the end of a central path with the right active bound (x0 = 1) and the right multiplier signs, needs
+// fewer iterations. Started at HS071's own solution with its multipliers, it stays there.
+TEST(InteriorPoint, PrimalDualWarmStartFromANeighbourReachesTheOptimumSooner) {
+  LambdaNlp neighbour = hs071();
+  neighbour.gl[0] = 24.0;
+  const IpmResult rn = solve(neighbour);
+  ASSERT_EQ(rn.status, IpmStatus::kSolved);
+  ASSERT_GT(std::abs(rn.objective - 17.0140173), 1e-2);  // a different optimum
+
+  WarmStart primal;
+  primal.x = rn.x;
+  WarmStart primal_dual = primal;
+  primal_dual.y = rn.y, primal_dual.z_l = rn.z_l, primal_dual.z_u = rn.z_u;
+  ASSERT_TRUE(primal_dual.hasMultipliers(4, 2));
+  LambdaNlp q1 = hs071(), q2 = hs071();
+  const IpmResult rp = solve(q1, {}, &primal), rpd = solve(q2, {}, &primal_dual);
+  for (const IpmResult* r : {&rp, &rpd}) {
+    ASSERT_EQ(r->status, IpmStatus::kSolved);
+    EXPECT_NEAR(r->objective, 17.0140173, 1e-6);
+    EXPECT_NEAR(r->x[1], 4.7429994, 1e-6);
+    EXPECT_NEAR(r->x[3], 1.3794082, 1e-6);
+  }
+  // 7 and 4 iterations; without the neighbour's bound multipliers (mu 1e-8 and y alone) it takes 5.
+  EXPECT_LT(rpd.stats.iterations, rp.stats.iterations);
+  EXPECT_LE(rpd.stats.iterations, 4);
+
+  LambdaNlp q3 = hs071(), q4 = hs071();
+  const IpmResult cold = solve(q3);
+  WarmStart at;
+  at.x = cold.x, at.y = cold.y, at.z_l = cold.z_l, at.z_u = cold.z_u;
+  const IpmResult again = solve(q4, {}, &at);
+  ASSERT_EQ(again.status, IpmStatus::kSolved);
+  EXPECT_LE(again.stats.iterations, 2);  // 3 without the bound multipliers
+  EXPECT_LT((again.x - cold.x).cwiseAbs().maxCoeff(), 1e-7);
+  EXPECT_NEAR(again.y[0], cold.y[0], 1e-5);
+  EXPECT_NEAR(again.y[1], cold.y[1], 1e-5);
 }
 
 TEST(InteriorPoint, SolutionOnBoundsHasTheRightMultipliers) {
