@@ -113,21 +113,23 @@ nlohmann::json benchWarmReplan(const std::string& primitive, int repeat) {
     int iterations = 0;
     double cost = 0.0;
     std::string status;
+    std::string start;  // primal-dual | knots
   };
   std::map<std::string, std::map<std::string, Runs>> runs;  // backend -> neighbour -> runs
   for (int r = 0; r < repeat; ++r) {
     for (const std::string& n : near) {
       for (const std::string& b : kBackends) {
         const planner::JumpProblem p(configWith(primitive, b, {n}));
-        const Eigen::VectorXd x0 = p.decisionVector(source.at(b), "the default " + primitive + " plan");
+        const planner::WarmStartPoint warm = p.warmStart(source.at(b), "the default " + primitive + " plan");
         const auto t0 = std::chrono::steady_clock::now();
-        const planner::SolveResult res = p.solve(false, &x0);
+        const planner::SolveResult res = p.solve(false, warm);
         const auto t1 = std::chrono::steady_clock::now();
         Runs& e = runs[b][n];
         e.wall.push_back(std::chrono::duration<double>(t1 - t0).count());
         e.iterations = res.info.iterations;
         e.cost = res.info.cost;
         e.status = res.info.status;
+        e.start = warm.hasMultipliers() ? "primal-dual" : "knots";
       }
     }
   }
@@ -141,6 +143,7 @@ nlohmann::json benchWarmReplan(const std::string& primitive, int repeat) {
       const Runs& e = runs[b][n];
       nlohmann::json& jn = j["backends"][b][n];
       jn["status"] = e.status;
+      jn["start"] = e.start;
       jn["iterations"] = e.iterations;
       jn["cost"] = e.cost;
       jn["solve_wall_s_median"] = median(e.wall);

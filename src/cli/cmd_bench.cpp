@@ -192,9 +192,10 @@ int runBench(const BenchArgs& a) {
       const auto& w = out["planner"][p]["warm_replan"];
       for (const auto& [b, jb] : w["backends"].items()) {
         for (const std::string n : w["neighbours"]) {
-          std::fprintf(stderr, "  %-16s %-8s %-26s %s, %d iterations, median solve %.3f s wall, cost %.9g\n",
+          std::fprintf(stderr, "  %-16s %-8s %-26s %s, %d iterations (%s start), median solve %.3f s wall, cost %.9g\n",
                        p.c_str(), b.c_str(), n.c_str(), jb[n]["status"].get<std::string>().c_str(),
-                       jb[n]["iterations"].get<int>(), jb[n]["solve_wall_s_median"].get<double>(),
+                       jb[n]["iterations"].get<int>(), jb[n]["start"].get<std::string>().c_str(),
+                       jb[n]["solve_wall_s_median"].get<double>(),
                        jb[n]["cost"].get<double>());
         }
       }

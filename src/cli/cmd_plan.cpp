@@ -50,10 +50,19 @@ std::pair<std::string, std::string> warmStartSource(const PlanArgs& a) {
   return {file, group};
 }
 
-// The start of a warm-started plan: the knots of primitive `group` (default: the one being planned) in `file`.
-Eigen::VectorXd warmStartPoint(const planner::JumpProblem& problem, const PlanArgs& a) {
+// The start of a warm-started plan: the knots of primitive `group` (default: the one being planned) in `file`,
+// and its solver multipliers when the file holds them for an OCP of this one's sizes.
+planner::WarmStartPoint warmStartPoint(const planner::JumpProblem& problem, const PlanArgs& a) {
   const auto [file, group] = warmStartSource(a);
-  return problem.decisionVector(data::readPrimitive(file, group), "--warm-start " + file + ":" + group);
+  const data::Primitive p = data::readPrimitive(file, group);
+  planner::WarmStartPoint w = problem.warmStart(p, "--warm-start " + file + ":" + group);
+  if (!a.quiet) {
+    const char* why = w.hasMultipliers()            ? "its knots and multipliers (primal-dual)"
+                      : p.mult_constraints.size() > 0 ? "its knots only (its multipliers belong to an OCP of other sizes)"
+                                                      : "its knots only (the file holds no multipliers)";
+    std::fprintf(stderr, "  warm start from %s:%s: %s\n", file.c_str(), group.c_str(), why);
+  }
+  return w;
 }
 
 std::string sidecarPath(const std::string& out, const std::string& name) {
@@ -139,9 +148,8 @@ int runPlan(const PlanArgs& a) {
                  problem.ocp().numVariables(), problem.ocp().numConstraints(), problem.ocp().jacobianNonzeros(),
                  problem.ocp().hessianNonzeros());
   }
-  Eigen::VectorXd x0;
-  if (!a.warm_start.empty()) x0 = warmStartPoint(problem, a);
-  const planner::SolveResult result = problem.solve(!a.quiet, a.warm_start.empty() ? nullptr : &x0);
+  const planner::SolveResult result =
+      a.warm_start.empty() ? problem.solve(!a.quiet) : problem.solve(!a.quiet, warmStartPoint(problem, a));
   const data::Primitive prim = problem.toPrimitive(result);
   data::writePrimitives(a.out, {prim}, a.append ? data::WriteMode::Append : data::WriteMode::Replace);
   writeTextFileAtomic(sidecarPath(a.out, prim.name), prim.config_yaml);

@@ -17,8 +17,8 @@ using Ipopt::Number;
 
 class OcpTnlp : public Ipopt::TNLP {
  public:
-  OcpTnlp(const Ocp& ocp, const SolverSettings& s, const Eigen::VectorXd* x0, SolveResult& result)
-      : ocp_(ocp), s_(s), x0_(x0), result_(result) {}
+  OcpTnlp(const Ocp& ocp, const SolverSettings& s, const WarmStartPoint* warm, SolveResult& result)
+      : ocp_(ocp), s_(s), warm_(warm), result_(result) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
     n = ocp_.numVariables();
@@ -41,11 +41,19 @@ class OcpTnlp : public Ipopt::TNLP {
     return true;
   }
 
-  bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number*, Number*, Index, bool init_lambda,
-                          Number*) override {
-    if (!init_x || init_z || init_lambda) return false;
-    const Eigen::VectorXd& start = x0_ ? *x0_ : ocp_.guess();
+  // The multipliers are asked for (warm_start_init_point) only when the warm start holds them.
+  bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_L, Number* z_U, Index m,
+                          bool init_lambda, Number* lambda) override {
+    const bool multipliers = warm_ && warm_->hasMultipliers();
+    if (!init_x || ((init_z || init_lambda) && !multipliers)) return false;
+    const Eigen::VectorXd& start = warm_ ? warm_->z : ocp_.guess();
     for (Index i = 0; i < n; ++i) x[i] = start[i];
+    if (init_z) {
+      for (Index i = 0; i < n; ++i) z_L[i] = warm_->z_l[i], z_U[i] = warm_->z_u[i];
+    }
+    if (init_lambda) {
+      for (Index j = 0; j < m; ++j) lambda[j] = warm_->y[j];
+    }
     return true;
   }
 
@@ -110,11 +118,13 @@ class OcpTnlp : public Ipopt::TNLP {
     return true;
   }
 
-  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number*, const Number*, Index m,
+  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number* z_L, const Number* z_U, Index m,
                          const Number* g, const Number* lambda, Number obj_value, const Ipopt::IpoptData* ip_data,
                          Ipopt::IpoptCalculatedQuantities*) override {
     result_.z = Eigen::Map<const Eigen::VectorXd>(x, n);
     result_.y = Eigen::Map<const Eigen::VectorXd>(lambda, m);
+    result_.z_l = Eigen::Map<const Eigen::VectorXd>(z_L, n);
+    result_.z_u = Eigen::Map<const Eigen::VectorXd>(z_U, n);
     result_.info.cost = obj_value;
     result_.info.iterations = ip_data ? static_cast<int>(ip_data->iter_count()) : 0;
     double viol = 0.0;
@@ -149,17 +159,17 @@ class OcpTnlp : public Ipopt::TNLP {
   };
   const Ocp& ocp_;
   const SolverSettings& s_;
-  const Eigen::VectorXd* x0_;
+  const WarmStartPoint* warm_;
   SolveResult& result_;
 };
 
 }  // namespace
 
-SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s, const Eigen::VectorXd* x0) {
+SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s, const WarmStartPoint* warm) {
   SolveResult result;
-  result.z = x0 ? *x0 : ocp.guess();
+  result.z = warm ? warm->z : ocp.guess();
   result.stats.backend = "ipopt";
-  Ipopt::SmartPtr<Ipopt::TNLP> nlp = new OcpTnlp(ocp, s, x0, result);
+  Ipopt::SmartPtr<Ipopt::TNLP> nlp = new OcpTnlp(ocp, s, warm, result);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->Options()->SetIntegerValue("print_level", s.print_level);
   app->Options()->SetStringValue("sb", "yes");  // no banner
@@ -176,7 +186,16 @@ SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s, const Eigen:
   app->Options()->SetStringValue("hessian_approximation", s.hessian);
   if (s.user_scaling) app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
   if (s.print_level >= 5) app->Options()->SetStringValue("print_timing_statistics", "yes");
-  if (x0) {  // warm start from a neighbouring solution: stay near it (no multipliers are known)
+  if (warm && warm->hasMultipliers()) {  // primal-dual warm start: from the neighbour's end of the central path
+    app->Options()->SetStringValue("warm_start_init_point", "yes");
+    app->Options()->SetStringValue("mu_strategy", "monotone");
+    app->Options()->SetNumericValue("mu_init", 1e-8);
+    app->Options()->SetNumericValue("warm_start_bound_push", 1e-6);
+    app->Options()->SetNumericValue("warm_start_bound_frac", 1e-6);
+    app->Options()->SetNumericValue("warm_start_slack_bound_push", 1e-6);
+    app->Options()->SetNumericValue("warm_start_slack_bound_frac", 1e-6);
+    app->Options()->SetNumericValue("warm_start_mult_bound_push", 1e-3);
+  } else if (warm) {  // from the knots alone: stay near them (no multipliers are known)
     app->Options()->SetNumericValue("mu_init", 1e-4);
     app->Options()->SetNumericValue("bound_push", 1e-6);
     app->Options()->SetNumericValue("bound_frac", 1e-6);

@@ -11,8 +11,9 @@
 
 namespace centaur::planner {
 
-/// Solve from the OCP's guess or from `x0` (a warm start: Ipopt starts closer to its bounds and with a small
-/// barrier parameter); never throws for solver failures (they are reported in info.status).
-SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& settings, const Eigen::VectorXd* x0 = nullptr);
+/// Solve from the OCP's guess or from `warm` (Ipopt starts closer to its bounds and with a small barrier
+/// parameter; with the neighbour's multipliers also from those: warm_start_init_point, monotone barrier from
+/// 1e-8); never throws for solver failures (they are reported in info.status).
+SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& settings, const WarmStartPoint* warm = nullptr);
 
 }  // namespace centaur::planner

@@ -29,6 +29,12 @@ data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sampl
   out.name = cfg_.primitive;
   out.solve = result.info;
   const Eigen::VectorXd& z = result.z;
+  if (result.y.size() == ocp_.numConstraints() && result.z_l.size() == z.size() && result.z_u.size() == z.size() &&
+      result.y.allFinite() && result.z_l.allFinite() && result.z_u.allFinite()) {
+    out.mult_constraints = result.y;
+    out.mult_lower = result.z_l.cwiseMax(0.0);
+    out.mult_upper = result.z_u.cwiseMax(0.0);
+  }
   const int nx = kNq + kNv, nu_c = ocp_.nu();
 
   out.knot_x.resize(N_ + 1, nx);

@@ -311,6 +311,24 @@ SolveResult JumpProblem::solve(bool progress, const Eigen::VectorXd* x0) const {
   return solveOcp(ocp_, s, x0);
 }
 
+SolveResult JumpProblem::solve(bool progress, const WarmStartPoint& warm) const {
+  SolverSettings s = cfg_.solver;
+  s.progress = progress;
+  return solveOcp(ocp_, s, warm);
+}
+
+WarmStartPoint JumpProblem::warmStart(const data::Primitive& p, const std::string& source) const {
+  WarmStartPoint w;
+  w.z = decisionVector(p, source);
+  if (p.mult_constraints.size() == ocp_.numConstraints() && p.mult_lower.size() == w.z.size() &&
+      p.mult_upper.size() == w.z.size()) {
+    w.y = p.mult_constraints;
+    w.z_l = p.mult_lower;
+    w.z_u = p.mult_upper;
+  }
+  return w;
+}
+
 Eigen::VectorXd JumpProblem::decisionVector(const data::Primitive& p, const std::string& source) const {
   const int nx = ocp_.nx(), nu = ocp_.nu();
   if (p.knot_x.rows() != N_ + 1 || p.knot_x.cols() != nx || p.knot_u.rows() != N_ || p.knot_u.cols() != nu) {

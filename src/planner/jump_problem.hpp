@@ -36,9 +36,14 @@ class JumpProblem {
 
   /// Solve from the default guess, or from `x0` (a warm start, e.g. decisionVector() of a neighbouring primitive).
   SolveResult solve(bool progress, const Eigen::VectorXd* x0 = nullptr) const;
+  /// Solve from a neighbouring solution (warmStart()): primal-dual when it holds multipliers.
+  SolveResult solve(bool progress, const WarmStartPoint& warm) const;
   /// The decision vector of a primitive planned on the same horizon (its knots), for a warm start; InputError
   /// naming `source` if the numbers of intervals, states or controls differ.
   Eigen::VectorXd decisionVector(const data::Primitive& p, const std::string& source) const;
+  /// decisionVector() plus the primitive's solver multipliers when it holds them for an OCP of this one's
+  /// sizes (the same constraint rows and variables; else the start is primal only: hasMultipliers() false).
+  WarmStartPoint warmStart(const data::Primitive& p, const std::string& source) const;
   /// Knots + 1 kHz resampling (integration of the same dynamics with the piecewise-constant controls).
   data::Primitive toPrimitive(const SolveResult& result, double sample_dt = 1e-3) const;
 

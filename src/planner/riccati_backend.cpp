@@ -9,9 +9,9 @@
 
 namespace centaur::planner {
 
-SolveResult solveWithRiccati(const Ocp& ocp, const SolverSettings& s, const Eigen::VectorXd* x0) {
+SolveResult solveWithRiccati(const Ocp& ocp, const SolverSettings& s, const WarmStartPoint* start) {
   // Derivatives on both cores of the planning machine (when there are two).
-  OcpNlp nlp(ocp, s.user_scaling, x0, std::thread::hardware_concurrency() >= 2 ? 2 : 1);
+  OcpNlp nlp(ocp, s.user_scaling, start ? &start->z : nullptr, std::thread::hardware_concurrency() >= 2 ? 2 : 1);
   SolveResult result;
   result.z = nlp.initialPoint();
   result.stats.backend = "riccati";
@@ -31,11 +31,16 @@ SolveResult solveWithRiccati(const Ocp& ocp, const SolverSettings& s, const Eige
   o.mu_strategy = s.mu_strategy;
   o.progress = s.progress;
   ocp_solver::WarmStart warm;
-  if (x0) warm.x = *x0;
-  const ocp_solver::IpmResult r = ocp_solver::solveInteriorPoint(nlp, *kkt, o, x0 ? &warm : nullptr);
+  if (start) {
+    warm.x = start->z;
+    if (start->hasMultipliers()) warm.y = start->y, warm.z_l = start->z_l, warm.z_u = start->z_u;
+  }
+  const ocp_solver::IpmResult r = ocp_solver::solveInteriorPoint(nlp, *kkt, o, start ? &warm : nullptr);
 
   if (r.x.size() == result.z.size()) result.z = r.x;
   result.y = r.y;
+  result.z_l = r.z_l;
+  result.z_u = r.z_u;
   result.info.status = ocp_solver::toString(r.status);
   result.info.iterations = r.stats.iterations;
   result.info.solve_time_s = r.stats.time_total;

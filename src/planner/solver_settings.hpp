@@ -40,8 +40,17 @@ struct SolveResult {
   data::SolveInfo info;
   Eigen::VectorXd z;  ///< the final iterate (also when not converged)
   Eigen::VectorXd y;  ///< constraint multipliers (empty if the backend does not return them)
+  Eigen::VectorXd z_l, z_u;  ///< lower / upper bound multipliers of the decision variables (>= 0; or empty)
   std::string ipopt_status;
   SolveStats stats;
+};
+
+/// A start from a neighbouring solution (unscaled, in the OCP's order): its decision vector and, when known,
+/// its multipliers. With multipliers both backends start primal-dual (docs/planner.md, "Warm start").
+struct WarmStartPoint {
+  Eigen::VectorXd z;
+  Eigen::VectorXd y, z_l, z_u;  ///< all sized to the OCP, or all empty (unknown)
+  bool hasMultipliers() const { return y.size() > 0; }
 };
 
 }  // namespace centaur::planner
