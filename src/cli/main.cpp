@@ -1,6 +1,7 @@
 // centaur: plan, inspect, plot, simulate, compare and benchmark agile actions of CENTAURO.
-// The single place where errors become exit codes (common/error.hpp) and where the cleanup of temporaries on
-// signals and exit is installed (common/cleanup.hpp).
+// The single place where errors become exit codes (common/error.hpp), where the cleanup of temporaries on
+// signals and exit is installed (common/cleanup.hpp) and where freed memory is kept in the process
+// (common/retain_memory.hpp).
 #include <cstdio>
 #include <iostream>
 #include <new>
@@ -9,6 +10,7 @@
 #include "common/cleanup.hpp"
 #include "common/error.hpp"
 #include "common/excerpt.hpp"
+#include "common/retain_memory.hpp"
 
 
 namespace {
@@ -21,6 +23,7 @@ int report(const char* what, int code) {
 
 int main(int argc, char** argv) {
   using namespace centaur;
+  common::retainFreedMemory();  // repeated solves and simulations reuse their memory (no page faults)
   cleanup::install();
   cli::CliApp cli;
   std::function<int()> action;

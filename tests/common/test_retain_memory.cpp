@@ -1,0 +1,73 @@
+// ctest-labels: unit
+// common::retainFreedMemory keeps freed memory in the process: a thread that repeatedly builds and frees
+// workspaces of a few MB (as every planner solve does) faults its pages in once, not on every round. Each case
+// runs in a child process, so that the allocator starts from its defaults.
+#include <gtest/gtest.h>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <thread>
+#include <vector>
+
+#include "common/retain_memory.hpp"
+
+namespace {
+
+long minorFaults() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return r.ru_minflt;
+}
+
+// Page faults of rounds 2..20 of building and freeing ~3 MB of vectors on a worker thread.
+long faultsAfterTheFirstRound() {
+  long faults = 0;
+  std::thread worker([&] {
+    for (int round = 0; round < 20; ++round) {
+      const long f0 = minorFaults();
+      {
+        std::vector<std::vector<double>> blocks;
+        for (int k = 0; k < 8; ++k) blocks.emplace_back(40000 + 1000 * k, 1.0);
+      }
+      { std::vector<double> big(600000, 2.0); }
+      if (round > 0) faults += minorFaults() - f0;
+    }
+  });
+  worker.join();
+  return faults;
+}
+
+long faultsInChild(bool retain) {
+  int fd[2];
+  if (pipe(fd) != 0) return -1;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (retain) centaur::common::retainFreedMemory();
+    const long f = faultsAfterTheFirstRound();
+    const bool ok = write(fd[1], &f, sizeof f) == static_cast<ssize_t>(sizeof f);
+    _exit(ok ? 0 : 1);
+  }
+  close(fd[1]);
+  long f = -1;
+  if (read(fd[0], &f, sizeof f) != static_cast<ssize_t>(sizeof f)) f = -1;
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? f : -1;
+}
+
+}  // namespace
+
+TEST(RetainMemory, RepeatedWorkspacesFaultInOnce) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "the sanitizers bring their own allocator";
+#endif
+  const long kept = faultsInChild(true), returned = faultsInChild(false);
+  ASSERT_GE(kept, 0);
+  ASSERT_GE(returned, 0);
+  // ~3 MB per round = ~750 pages: glibc's defaults fault most of them in again every round (19 rounds).
+  EXPECT_LT(kept, 50) << "with retainFreedMemory";
+  EXPECT_GT(returned, 500) << "glibc's defaults (the reason for retainFreedMemory)";
+}
