@@ -287,10 +287,10 @@ void Ipm::initialize() {
   if (primal_dual) warmMultipliers();
   y_.setZero(m_);
   grad_.resize(n_);
-  if (!evalDerivatives()) throw std::runtime_error("interior point: the initial derivatives cannot be evaluated");
   if (warm && warm_->y.size() == m_) {
-    y_ = warm_->y;
+    y_ = warm_->y;  // given: the derivatives are evaluated once, with these multipliers
   } else {
+    if (!evalDerivatives()) throw std::runtime_error("interior point: the initial derivatives cannot be evaluated");
     leastSquaresMultipliers();
   }
   if (!evalDerivatives()) throw std::runtime_error("interior point: the initial derivatives cannot be evaluated");
