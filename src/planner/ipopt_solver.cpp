@@ -44,7 +44,7 @@ class OcpTnlp : public Ipopt::TNLP {
   // The multipliers are asked for (warm_start_init_point) only when the warm start holds them.
   bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_L, Number* z_U, Index m,
                           bool init_lambda, Number* lambda) override {
-    const bool multipliers = warm_ && warm_->hasMultipliers();
+    const bool multipliers = warm_ && warm_->hasMultipliers(n, m);
     if (!init_x || ((init_z || init_lambda) && !multipliers)) return false;
     const Eigen::VectorXd& start = warm_ ? warm_->z : ocp_.guess();
     for (Index i = 0; i < n; ++i) x[i] = start[i];
@@ -186,7 +186,8 @@ SolveResult solveWithIpopt(const Ocp& ocp, const SolverSettings& s, const WarmSt
   app->Options()->SetStringValue("hessian_approximation", s.hessian);
   if (s.user_scaling) app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
   if (s.print_level >= 5) app->Options()->SetStringValue("print_timing_statistics", "yes");
-  if (warm && warm->hasMultipliers()) {  // primal-dual warm start: from the neighbour's end of the central path
+  // Primal-dual warm start (multipliers that fit this OCP): from the neighbour's end of the central path.
+  if (warm && warm->hasMultipliers(ocp.numVariables(), ocp.numConstraints())) {
     app->Options()->SetStringValue("warm_start_init_point", "yes");
     app->Options()->SetStringValue("mu_strategy", "monotone");
     app->Options()->SetNumericValue("mu_init", 1e-8);

@@ -33,7 +33,11 @@ SolveResult solveWithRiccati(const Ocp& ocp, const SolverSettings& s, const Warm
   ocp_solver::WarmStart warm;
   if (start) {
     warm.x = start->z;
-    if (start->hasMultipliers()) warm.y = start->y, warm.z_l = start->z_l, warm.z_u = start->z_u;
+    if (start->hasMultipliers(ocp.numVariables(), ocp.numConstraints())) {
+      warm.y = start->y;
+      warm.z_l = start->z_l;
+      warm.z_u = start->z_u;
+    }
   }
   const ocp_solver::IpmResult r = ocp_solver::solveInteriorPoint(nlp, *kkt, o, start ? &warm : nullptr);
 

@@ -50,7 +50,11 @@ struct SolveResult {
 struct WarmStartPoint {
   Eigen::VectorXd z;
   Eigen::VectorXd y, z_l, z_u;  ///< all sized to the OCP, or all empty (unknown)
-  bool hasMultipliers() const { return y.size() > 0; }
+  bool hasMultipliers() const { return y.size() > 0 && z_l.size() > 0 && z_u.size() > 0; }
+  /// Multipliers for an OCP of n variables and m constraint rows (the backends use them only then).
+  bool hasMultipliers(Eigen::Index n, Eigen::Index m) const {
+    return y.size() == m && z_l.size() == n && z_u.size() == n;
+  }
 };
 
 }  // namespace centaur::planner
