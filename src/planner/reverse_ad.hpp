@@ -11,6 +11,7 @@
 // Constants never enter the tape; nodes that do not depend on a nonlinear input carry no tangent.
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -24,13 +25,30 @@ struct TapeNode {
   bool curved;            // any second partial nonzero
 };
 
-struct Tape {
-  std::vector<TapeNode> nodes;  // the values live in the TapeVars; the sweeps need the partials only
+class Tape {
+ public:
+  /// Append a node; returns its index. Inline and without a call on the common path: recording is a large part
+  /// of an element's Hessian (every elementary operation pushes one node).
   int push(double /*v*/, int a, double da, int b, double db, double daa, double dab, double dbb, bool curved) {
-    nodes.push_back(TapeNode{a, b, da, db, daa, dab, dbb, curved});
-    return static_cast<int>(nodes.size()) - 1;
+    if (next_ == limit_) grow();
+    *next_ = TapeNode{a, b, da, db, daa, dab, dbb, curved};
+    return static_cast<int>(next_++ - storage_.data());
   }
-  void clear() { nodes.clear(); }
+  void clear() { next_ = storage_.data(); }
+  int size() const { return static_cast<int>(next_ - storage_.data()); }
+  const TapeNode* nodes() const { return storage_.data(); }
+
+ private:
+  // Doubles the storage (keeping the nodes); the buffers grow once to the largest tape and are reused.
+  void grow() {
+    const std::size_t n = next_ - storage_.data();
+    storage_.resize(std::max<std::size_t>(256, 2 * storage_.size()));
+    next_ = storage_.data() + n;
+    limit_ = storage_.data() + storage_.size();
+  }
+  std::vector<TapeNode> storage_;  // the values live in the TapeVars; the sweeps need the partials only
+  TapeNode* next_ = nullptr;       // first free node
+  TapeNode* limit_ = nullptr;      // end of the storage
 };
 
 /// The tape all TapeVar operations record on (one per thread).
@@ -141,7 +159,7 @@ void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
   using VecN = Eigen::Matrix<double, NN, 1>;
   using Map = Eigen::Map<VecN>;
   const Tape& tape = activeTape();
-  const int n = static_cast<int>(tape.nodes.size());
+  const int n = tape.size();
   SweepScratch& s = sweepScratch();
   if (static_cast<int>(s.bar.size()) < n) {
     s.bar.resize(n);
@@ -157,7 +175,7 @@ void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
   double* bardot = s.bardot.data();
   char* active = s.active.data();
   char* hasbd = s.hasbardot.data();
-  const TapeNode* nodes = tape.nodes.data();
+  const TapeNode* nodes = tape.nodes();
 
   // Forward: tangents in the NN nonlinear input directions.
   for (int v = 0; v < NI; ++v) {
@@ -191,22 +209,27 @@ void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
     const double bv = bar[v];
     const bool bd = hasbd[v];
     if (bv == 0.0 && !bd) continue;
-    // operand a
-    auto addTo = [&](int p, double dp, double dpa, double dpb) {
+    // Operand p of node v: bar_p += dp bar_v; bardot_p += dp bardot_v + bar_v (d2v/dp da) dot_a + ... (b). The
+    // terms are added in this order; a node's first contribution is assigned (0 + x == x), not added to zeros.
+    auto addTo = [&](int p, double dp, double dpa, double dpb) __attribute__((always_inline)) {
       bar[p] += dp * bv;
-      const bool second = t.curved && bv != 0.0 &&
-                          ((dpa != 0.0 && active[t.a]) || (t.b >= 0 && dpb != 0.0 && active[t.b]));
-      if (!bd && !second) return;
-      Map out(bardot + p * NN);
-      if (!hasbd[p]) {
-        out.setZero();
-        hasbd[p] = 1;
-      }
-      if (bd) out += dp * Map(bardot + v * NN);
-      if (second) {
-        if (dpa != 0.0 && active[t.a]) out += (bv * dpa) * Map(dot + t.a * NN);
-        if (t.b >= 0 && dpb != 0.0 && active[t.b]) out += (bv * dpb) * Map(dot + t.b * NN);
-      }
+      const bool sa = t.curved && bv != 0.0 && dpa != 0.0 && active[t.a];
+      const bool sb = t.curved && bv != 0.0 && t.b >= 0 && dpb != 0.0 && active[t.b];
+      if (!bd && !sa && !sb) return;
+      double* out = bardot + p * NN;
+      bool first = !hasbd[p];
+      hasbd[p] = 1;
+      auto add = [&](double c, const double* x) __attribute__((always_inline)) {
+        if (first) {
+          for (int i = 0; i < NN; ++i) out[i] = c * x[i];
+        } else {
+          for (int i = 0; i < NN; ++i) out[i] += c * x[i];
+        }
+        first = false;
+      };
+      if (bd) add(dp, bardot + v * NN);
+      if (sa) add(bv * dpa, dot + t.a * NN);
+      if (sb) add(bv * dpb, dot + t.b * NN);
     };
     if (t.b == t.a) {
       // never produced (x*x is recorded as a unary square), kept for safety
