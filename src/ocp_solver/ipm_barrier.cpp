@@ -129,22 +129,38 @@ void Ipm::combine(const Direction& a, const Direction& c, double sigma, Directio
   d.vu = a.vu + sigma * (c.vu - a.vu);
 }
 
+// The parts of the quality function that do not depend on sigma: the dual infeasibility (its squared sum and
+// count) and the mean squared primal infeasibility, computed once per iteration.
+Ipm::QualityBase Ipm::qualityBase() const {
+  QualityBase b;
+  const SparsePattern& p = nlp_.pattern();
+  Vec rd = grad_ - zl_ + zu_;
+  for (std::size_t t = 0; t < p.jac_rows.size(); ++t) rd[p.jac_cols[t]] += jac_[t] * y_[p.jac_rows[t]];
+  for (int i = 0; i < n_; ++i) {
+    if (fixed_[i]) continue;
+    b.dual += rd[i] * rd[i], ++b.nd;
+  }
+  for (int r = 0; r < m_; ++r) {
+    if (!ineq_[r]) continue;
+    const double rs = -y_[r] - vl_[r] + vu_[r];
+    b.dual += rs * rs, ++b.nd;
+  }
+  b.primal = m_ ? rp_.squaredNorm() / m_ : 0.0;
+  return b;
+}
+
 // Ipopt's quality function (2-norm squared, each part divided by its size) of the linearized KKT error after the
-// step for sigma with the fraction-to-the-boundary step sizes.
-double Ipm::qualityFunction(const Direction& a, const Direction& c, double sigma, double tau) const {
-  Direction d;
+// step for sigma with the fraction-to-the-boundary step sizes (d: scratch for the combined step).
+double Ipm::qualityFunction(const Direction& a, const Direction& c, double sigma, double tau, const QualityBase& base,
+                            Direction& d) const {
   combine(a, c, sigma, d);
   const double ap = std::min(maxStep(x_, d.x, xl_, xu_, has_xl_, has_xu_, tau),
                              maxStep(s_, d.s, gl_, gu_, has_gl_, has_gu_, tau));
   const double ad = maxDualStep(d, tau);
-  const SparsePattern& p = nlp_.pattern();
-  Vec rd = grad_ - zl_ + zu_;
-  for (std::size_t t = 0; t < p.jac_rows.size(); ++t) rd[p.jac_cols[t]] += jac_[t] * y_[p.jac_rows[t]];
-  double dual = 0.0, compl_sq = 0.0;
-  int nd = 0, nc = 0;
+  double compl_sq = 0.0;
+  int nc = 0;
   for (int i = 0; i < n_; ++i) {
     if (fixed_[i]) continue;
-    dual += rd[i] * rd[i], ++nd;
     if (has_xl_[i]) {
       const double v = (x_[i] + ap * d.x[i] - xl_[i]) * (zl_[i] + ad * d.zl[i]);
       compl_sq += v * v, ++nc;
@@ -156,8 +172,6 @@ double Ipm::qualityFunction(const Direction& a, const Direction& c, double sigma
   }
   for (int r = 0; r < m_; ++r) {
     if (!ineq_[r]) continue;
-    const double rs = -y_[r] - vl_[r] + vu_[r];
-    dual += rs * rs, ++nd;
     if (has_gl_[r]) {
       const double v = (s_[r] + ap * d.s[r] - gl_[r]) * (vl_[r] + ad * d.vl[r]);
       compl_sq += v * v, ++nc;
@@ -167,8 +181,7 @@ double Ipm::qualityFunction(const Direction& a, const Direction& c, double sigma
       compl_sq += v * v, ++nc;
     }
   }
-  const double primal = m_ ? rp_.squaredNorm() / m_ : 0.0;
-  return (1.0 - ad) * (1.0 - ad) * dual / std::max(1, nd) + (1.0 - ap) * (1.0 - ap) * primal +
+  return (1.0 - ad) * (1.0 - ad) * base.dual / std::max(1, base.nd) + (1.0 - ap) * (1.0 - ap) * base.primal +
          compl_sq / std::max(1, nc);
 }
 
@@ -185,7 +198,8 @@ bool Ipm::adaptiveDirection() {
   // is chosen first (from q(1) and q(1 - eps)), then a golden-section search in sigma on that side, stopped when
   // the bracket is narrower than kSectionTol relative to its upper end or after kGoldenSteps sections.
   const double sigma_lo = std::max(kSigmaMin, kMuMin / avg), sigma_up = std::max(sigma_lo, std::min(kSigmaMax, mu_max_ / avg));
-  auto q = [&](double sg) { return qualityFunction(aff_, cen_, sg, kTauMin); };
+  const QualityBase base = qualityBase();
+  auto q = [&](double sg) { return qualityFunction(aff_, cen_, sg, kTauMin, base, d_); };
   double sigma;
   if (sigma_up <= 1.0 || sigma_lo >= 1.0) {
     sigma = goldenSection(q, sigma_lo, sigma_up);

@@ -43,7 +43,13 @@ class Ipm {
   void enterMonotoneMode();  // adaptive: leave the free mode, mu from the average complementarity
   bool adaptiveDirection();
   double averageComplementarity() const;
-  double qualityFunction(const Direction& aff, const Direction& cen, double sigma, double tau) const;
+  struct QualityBase {
+    double dual = 0.0, primal = 0.0;
+    int nd = 0;
+  };
+  QualityBase qualityBase() const;
+  double qualityFunction(const Direction& aff, const Direction& cen, double sigma, double tau, const QualityBase& base,
+                         Direction& d) const;
   void combine(const Direction& aff, const Direction& cen, double sigma, Direction& d) const;
   bool progressAcceptable() const;
   void rememberProgress();
