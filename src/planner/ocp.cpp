@@ -316,55 +316,80 @@ void Ocp::scatterHessian(const Instance& t, const double* h, double scale, doubl
   for (const auto& [k, slot] : t.hess_nz) values[slot] += scale * h[k];
 }
 
-double Ocp::constraintTermWork(int i) const {
-  const Instance& t = constraint_terms_[i];
-  const double ni = static_cast<double>(t.in.size()), no = static_cast<double>(t.out_rows.size());
-  return t.const_jac ? 0.0 : ni * no + (t.has_hessian ? ni * ni : 0.0);
-}
-
 void Ocp::addConstantDerivatives(double sigma, double* jac, double* hess) const {
   for (std::size_t k = 0; k < const_jac_.size(); ++k) jac[k] += const_jac_[k];
   if (sigma != 0.0)
     for (std::size_t k = 0; k < const_cost_hess_.size(); ++k) hess[k] += sigma * const_cost_hess_[k];
 }
 
-void Ocp::addDerivatives(const double* z, double sigma, const double* lambda, int c0, int c1, int k0, int k1,
+double Ocp::termWork(TermRef r) const {
+  const Instance& t = r.cost ? cost_terms_[r.index] : constraint_terms_[r.index];
+  const double ni = static_cast<double>(t.in.size()), no = static_cast<double>(t.element->numOutputs());
+  if (!r.cost && t.const_jac) return 0.0;
+  return ni * no + (t.has_hessian && !t.const_hess ? ni * ni : 0.0);
+}
+
+Ocp::Footprint Ocp::footprint(TermRef r) const {
+  const Instance& t = r.cost ? cost_terms_[r.index] : constraint_terms_[r.index];
+  Footprint f;
+  if (!r.cost && t.const_jac) return f;
+  if (r.cost) f.grad = t.in;
+  else
+    for (const auto& [k, slot] : t.jac_nz) f.jac.push_back(slot);
+  if (t.has_hessian && !t.const_hess)
+    for (const auto& [k, slot] : t.hess_nz) f.hess.push_back(slot);
+  for (auto* v : {&f.jac, &f.hess, &f.grad}) {
+    std::sort(v->begin(), v->end());
+    v->erase(std::unique(v->begin(), v->end()), v->end());
+  }
+  return f;
+}
+
+void Ocp::addDerivatives(const double* z, double sigma, const double* lambda, const std::vector<TermRef>& terms,
                          Scratch& s, double* grad, double* jac, double* hess) const {
   s.in.resize(max_in_);
   s.out.resize(max_out_);
   s.jac.resize(max_in_ * max_out_);
   s.hess.resize(max_in_ * max_in_);
   s.w.resize(max_out_);
-  for (int c = c0; c < c1; ++c) {
-    const Instance& t = constraint_terms_[c];
-    if (t.const_jac) continue;
-    const int ni = static_cast<int>(t.in.size()), no = static_cast<int>(t.out_rows.size());
-    for (int i = 0; i < ni; ++i) s.in[i] = z[t.in[i]];
-    bool any = false;
-    for (int j = 0; j < no; ++j) {
-      s.w[j] = lambda[t.out_rows[j]];
-      any = any || s.w[j] != 0.0;
+  for (const TermRef& r : terms) {
+    const Instance& t = r.cost ? cost_terms_[r.index] : constraint_terms_[r.index];
+    if (r.cost) {
+      addCostTerm(t, z, sigma, s, grad, hess);
+    } else if (!t.const_jac) {
+      addConstraintTerm(t, z, lambda, s, jac, hess);
     }
-    t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
-    if (t.has_hessian && any) {
-      t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
-      scatterHessian(t, s.hess.data(), 1.0, hess);
-    }
-    for (const auto& [k, slot] : t.jac_nz) jac[slot] += s.jac[k];
   }
-  for (int c = k0; c < k1; ++c) {
-    const Instance& t = cost_terms_[c];
-    const int ni = static_cast<int>(t.in.size()), no = t.element->numOutputs();
-    for (int i = 0; i < ni; ++i) s.in[i] = z[t.in[i]];
-    for (int j = 0; j < no; ++j) s.w[j] = sigma * t.weight;
-    t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
-    if (t.has_hessian && !t.const_hess && sigma != 0.0) {
-      t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
-      scatterHessian(t, s.hess.data(), 1.0, hess);
-    }
-    for (int j = 0; j < no; ++j)
-      for (int i = 0; i < ni; ++i) grad[t.in[i]] += t.weight * s.jac[j * ni + i];
+}
+
+void Ocp::addConstraintTerm(const Instance& t, const double* z, const double* lambda, Scratch& s, double* jac,
+                            double* hess) const {
+  const int ni = static_cast<int>(t.in.size()), no = static_cast<int>(t.out_rows.size());
+  for (int i = 0; i < ni; ++i) s.in[i] = z[t.in[i]];
+  bool any = false;
+  for (int j = 0; j < no; ++j) {
+    s.w[j] = lambda[t.out_rows[j]];
+    any = any || s.w[j] != 0.0;
   }
+  t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
+  if (t.has_hessian && any) {
+    t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
+    scatterHessian(t, s.hess.data(), 1.0, hess);
+  }
+  for (const auto& [k, slot] : t.jac_nz) jac[slot] += s.jac[k];
+}
+
+void Ocp::addCostTerm(const Instance& t, const double* z, double sigma, Scratch& s, double* grad, double* hess) const {
+  const int ni = static_cast<int>(t.in.size()), no = t.element->numOutputs();
+  for (int i = 0; i < ni; ++i) s.in[i] = z[t.in[i]];
+  for (int j = 0; j < no; ++j) s.w[j] = sigma * t.weight;
+  t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
+  if (t.has_hessian && !t.const_hess && sigma != 0.0) {
+    t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
+    scatterHessian(t, s.hess.data(), 1.0, hess);
+  }
+  for (int j = 0; j < no; ++j)
+    for (int i = 0; i < ni; ++i) grad[t.in[i]] += t.weight * s.jac[j * ni + i];
 }
 
 double Ocp::objective(const double* z) const {

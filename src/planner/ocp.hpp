@@ -93,20 +93,30 @@ class Ocp {
   /// Lower triangle of sigma * Hess(f) + sum_i lambda_i Hess(g_i).
   void hessian(const double* z, double sigma, const double* lambda, double* values) const;
 
-  // ---- the same derivatives in parts, for parallel evaluation (OcpEvaluator) ----
+  // ---- the same derivatives in parts, for parallel evaluation (OcpNlp) ----
   /// Buffers of one evaluating thread.
   struct Scratch {
     std::vector<double> in, out, jac, hess, w;
   };
   int numConstraintTerms() const { return static_cast<int>(constraint_terms_.size()); }
   int numCostTerms() const { return static_cast<int>(cost_terms_.size()); }
-  /// Relative work of a constraint term's derivatives (for splitting the terms between threads).
-  double constraintTermWork(int i) const;
-  /// grad, jac, hess += the derivatives that depend on z of constraint terms [c0, c1) and cost terms [k0, k1).
-  /// jac and hess are in the
-  /// Jacobian / Hessian structure; nothing is zeroed.
-  void addDerivatives(const double* z, double sigma, const double* lambda, int c0, int c1, int k0, int k1, Scratch& s,
-                      double* grad, double* jac, double* hess) const;
+  /// One term: a constraint term or a cost term, by its index among those.
+  struct TermRef {
+    bool cost = false;
+    int index = 0;
+  };
+  /// Relative work of a term's derivatives (for splitting the terms between threads).
+  double termWork(TermRef t) const;
+  /// What a term's derivatives add to at every call (a constant Jacobian or cost Hessian is added once, by
+  /// addConstantDerivatives): Jacobian slots, Hessian slots and gradient entries, each listed once.
+  struct Footprint {
+    std::vector<int> jac, hess, grad;
+  };
+  Footprint footprint(TermRef t) const;
+  /// grad, jac, hess += the derivatives that depend on z of the listed terms, in that order. jac and hess are in
+  /// the Jacobian / Hessian structure; nothing is zeroed.
+  void addDerivatives(const double* z, double sigma, const double* lambda, const std::vector<TermRef>& terms,
+                      Scratch& s, double* grad, double* jac, double* hess) const;
   /// jac += the constant Jacobian entries (linear terms), hess += sigma * the constant cost Hessian (quadratic costs).
   void addConstantDerivatives(double sigma, double* jac, double* hess) const;
 
@@ -137,6 +147,9 @@ class Ocp {
   };
   void cacheConstantDerivatives();
   void scatterHessian(const Instance& t, const double* h, double scale, double* values) const;
+  void addConstraintTerm(const Instance& t, const double* z, const double* lambda, Scratch& s, double* jac,
+                         double* hess) const;
+  void addCostTerm(const Instance& t, const double* z, double sigma, Scratch& s, double* grad, double* hess) const;
   std::vector<double> const_jac_, const_cost_hess_;
   const Var& var(const std::string& name) const;
   void checkNode(const Var& v, int k) const;

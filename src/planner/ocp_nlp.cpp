@@ -13,18 +13,75 @@ OcpNlp::OcpNlp(const Ocp& ocp, bool user_scaling, const Eigen::VectorXd* x0, int
   pattern_.jac_cols = ocp.jacobianCols();
   pattern_.hess_rows = ocp.hessianRows();
   pattern_.hess_cols = ocp.hessianCols();
-  split_c_ = ocp.numConstraintTerms();
-  split_k_ = ocp.numCostTerms();
+  for (int c = 0; c < ocp.numConstraintTerms(); ++c) caller_terms_.push_back({false, c});
+  for (int k = 0; k < ocp.numCostTerms(); ++k) caller_terms_.push_back({true, k});
   if (threads >= 2) {
-    // The caller also takes every cost term: half of the constraint work goes to the worker.
-    double total = 0.0, acc = 0.0;
-    for (int i = 0; i < ocp.numConstraintTerms(); ++i) total += ocp.constraintTermWork(i);
-    split_c_ = 0;
-    while (split_c_ < ocp.numConstraintTerms() && acc < 0.5 * total) acc += ocp.constraintTermWork(split_c_++);
+    splitTerms();
     worker_ = std::make_unique<common::WorkerThread>();
     jac1_.resize(ocp.jacobianNonzeros());
     hess1_.resize(ocp.hessianNonzeros());
   }
+}
+
+// The terms are split between the caller and the worker; each thread adds its terms, in its order, into its own
+// buffers, and the caller then adds the worker's buffers to its own. The base split gives the worker the
+// constraint terms after half of their estimated work and leaves the rest and every cost term to the caller (it
+// differs from one thread only in the rounding of values both threads add to). To balance the work without
+// changing any sum of the base split, the caller's list is walked backwards: a term moves to the end of the
+// worker's list if that improves the balance and, for every value it adds to, it is the caller's last term there
+// and either the caller's only one (c + W == W + c) or the worker has none (the caller's sum ends with it anyway).
+void OcpNlp::splitTerms() {
+  const Ocp& o = ocp_;
+  const int nc = o.numConstraintTerms(), nj = o.jacobianNonzeros(), nh = o.hessianNonzeros();
+  double total = 0.0, acc = 0.0;
+  for (int c = 0; c < nc; ++c) total += o.termWork({false, c});
+  int split = 0;
+  while (split < nc && acc < 0.5 * total) acc += o.termWork({false, split++});
+  // Values as one index space: Jacobian slots, Hessian slots, gradient entries.
+  auto ids = [&](const Ocp::TermRef& t) {
+    const Ocp::Footprint f = o.footprint(t);
+    std::vector<int> v(f.jac);
+    for (int h : f.hess) v.push_back(nj + h);
+    for (int g : f.grad) v.push_back(nj + nh + g);
+    return v;
+  };
+  std::vector<Ocp::TermRef> caller;
+  for (int c = 0; c < split; ++c) caller.push_back({false, c});
+  for (int k = 0; k < o.numCostTerms(); ++k) caller.push_back({true, k});
+  std::vector<std::vector<int>> caller_ids(caller.size());
+  std::vector<std::vector<int>> stack(nj + nh + pattern_.n);  // per value: positions of the caller's terms
+  std::vector<int> worker_count(stack.size(), 0);
+  double work_caller = 0.0, work_worker = 0.0;
+  for (std::size_t p = 0; p < caller.size(); ++p) {
+    caller_ids[p] = ids(caller[p]);
+    for (int id : caller_ids[p]) stack[id].push_back(static_cast<int>(p));
+    work_caller += o.termWork(caller[p]);
+  }
+  worker_terms_.clear();
+  for (int c = split; c < nc; ++c) {
+    worker_terms_.push_back({false, c});
+    for (int id : ids({false, c})) ++worker_count[id];
+    work_worker += o.termWork({false, c});
+  }
+  std::vector<char> moved(caller.size(), 0);
+  for (int p = static_cast<int>(caller.size()) - 1; p >= 0; --p) {
+    const double w = o.termWork(caller[p]);
+    if (w <= 0.0 || work_worker + w > work_caller - w) continue;
+    bool ok = true;
+    for (int id : caller_ids[p]) ok = ok && stack[id].back() == p && (stack[id].size() == 1 || worker_count[id] == 0);
+    if (!ok) continue;
+    for (int id : caller_ids[p]) {
+      stack[id].pop_back();
+      ++worker_count[id];
+    }
+    moved[p] = 1;
+    worker_terms_.push_back(caller[p]);
+    work_caller -= w;
+    work_worker += w;
+  }
+  caller_terms_.clear();
+  for (std::size_t p = 0; p < caller.size(); ++p)
+    if (!moved[p]) caller_terms_.push_back(caller[p]);
 }
 
 void OcpNlp::bounds(Eigen::VectorXd& x_l, Eigen::VectorXd& x_u, Eigen::VectorXd& g_l, Eigen::VectorXd& g_u) const {
@@ -52,19 +109,19 @@ bool OcpNlp::constraints(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
 bool OcpNlp::derivatives(const Eigen::VectorXd& x, double obj_factor, const Eigen::VectorXd& y, Eigen::VectorXd& grad,
                          double* jac, double* hess) {
   const int nj = ocp_.jacobianNonzeros(), nh = ocp_.hessianNonzeros();
+  if (worker_) {  // started first: it zeroes its own buffers while the caller zeroes the outputs
+    worker_->run([&] {
+      grad1_.setZero(pattern_.n);
+      std::fill(jac1_.begin(), jac1_.end(), 0.0);
+      std::fill(hess1_.begin(), hess1_.end(), 0.0);
+      ocp_.addDerivatives(x.data(), obj_factor, y.data(), worker_terms_, scratch_[1], grad1_.data(), jac1_.data(),
+                          hess1_.data());
+    });
+  }
   grad.setZero(pattern_.n);
   std::fill(jac, jac + nj, 0.0);
   std::fill(hess, hess + nh, 0.0);
-  if (worker_) {
-    grad1_.setZero(pattern_.n);
-    std::fill(jac1_.begin(), jac1_.end(), 0.0);
-    std::fill(hess1_.begin(), hess1_.end(), 0.0);
-    worker_->run([&] {
-      ocp_.addDerivatives(x.data(), obj_factor, y.data(), split_c_, ocp_.numConstraintTerms(), split_k_,
-                          ocp_.numCostTerms(), scratch_[1], grad1_.data(), jac1_.data(), hess1_.data());
-    });
-  }
-  ocp_.addDerivatives(x.data(), obj_factor, y.data(), 0, split_c_, 0, split_k_, scratch_[0], grad.data(), jac, hess);
+  ocp_.addDerivatives(x.data(), obj_factor, y.data(), caller_terms_, scratch_[0], grad.data(), jac, hess);
   if (worker_) {
     worker_->wait();
     grad += grad1_;

@@ -2,6 +2,7 @@
 // The Ocp as the NLP of our interior-point method (ocp_solver/nlp.hpp), and the stage of each decision
 // variable (z = [x_0, u_0, x_1, ..., x_N]) for the stage-wise KKT solver.
 #include <memory>
+#include <vector>
 
 #include "ocp_solver/nlp.hpp"
 #include "ocp_solver/stage_kkt.hpp"
@@ -25,6 +26,10 @@ class OcpNlp final : public ocp_solver::Nlp {
   bool derivatives(const Eigen::VectorXd& x, double obj_factor, const Eigen::VectorXd& y, Eigen::VectorXd& grad,
                    double* jac, double* hess) override;
 
+  /// The terms each thread evaluates, in its order (the worker's list is empty with one thread).
+  const std::vector<Ocp::TermRef>& callerTerms() const { return caller_terms_; }
+  const std::vector<Ocp::TermRef>& workerTerms() const { return worker_terms_; }
+
   ocp_solver::StageLayout stageLayout() const;
   std::vector<char> fixedVariables() const;
   std::vector<char> equalityRows() const;
@@ -35,7 +40,8 @@ class OcpNlp final : public ocp_solver::Nlp {
   Eigen::VectorXd x0_;
   ocp_solver::SparsePattern pattern_;
   std::unique_ptr<common::WorkerThread> worker_;
-  int split_c_ = 0, split_k_ = 0;  // terms [0, split) on the caller, the rest on the worker
+  void splitTerms();
+  std::vector<Ocp::TermRef> caller_terms_, worker_terms_;  // each thread's terms, in the order it adds them
   Ocp::Scratch scratch_[2];
   Eigen::VectorXd grad1_;
   std::vector<double> jac1_, hess1_;

@@ -209,3 +209,53 @@ TEST(Derivatives, SplitAndTwoThreadEvaluationEqualsTheSeparateCalls) {
     }
   }
 }
+
+TEST(Derivatives, BalancedTwoThreadSplitSumsExactlyAsTheBaseSplit) {
+  // The base split: the worker takes the constraint terms after half of their estimated work, the caller the rest
+  // and every cost term; each sums its terms in order and the caller adds the worker's sums. The balanced split
+  // moves terms to the worker only where no sum changes, so its derivatives must equal these bit for bit.
+  for (const std::string primitive : {"squat-jump", "half-squat-jump"}) {
+    const JumpProblem problem(loadJumpConfig(primitive, "", {}));
+    const Ocp& ocp = problem.ocp();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    Eigen::VectorXd z = ocp.guess(), y(ocp.numConstraints());
+    for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * U(rng) * ocp.scale()[i];
+    for (int j = 0; j < y.size(); ++j) y[j] = U(rng);
+    const int nc = ocp.numConstraintTerms();
+    double total = 0.0, acc = 0.0, work_worker = 0.0, work_all = 0.0;
+    for (int c = 0; c < nc; ++c) total += ocp.termWork({false, c});
+    int split = 0;
+    while (split < nc && acc < 0.5 * total) acc += ocp.termWork({false, split++});
+    std::vector<Ocp::TermRef> caller, worker;
+    for (int c = 0; c < nc; ++c) (c < split ? caller : worker).push_back({false, c});
+    for (int k = 0; k < ocp.numCostTerms(); ++k) caller.push_back({true, k});
+    const int n = ocp.numVariables(), nj = ocp.jacobianNonzeros(), nh = ocp.hessianNonzeros();
+    std::vector<double> g0(n, 0.0), j0(nj, 0.0), h0(nh, 0.0), g1(n, 0.0), j1(nj, 0.0), h1(nh, 0.0);
+    Ocp::Scratch s;
+    ocp.addDerivatives(z.data(), 0.7, y.data(), caller, s, g0.data(), j0.data(), h0.data());
+    ocp.addDerivatives(z.data(), 0.7, y.data(), worker, s, g1.data(), j1.data(), h1.data());
+    for (int i = 0; i < n; ++i) g0[i] += g1[i];
+    for (int k = 0; k < nj; ++k) j0[k] += j1[k];
+    for (int k = 0; k < nh; ++k) h0[k] += h1[k];
+    ocp.addConstantDerivatives(0.7, j0.data(), h0.data());
+
+    OcpNlp nlp(ocp, true, nullptr, 2);
+    int moved_costs = 0;
+    for (const auto& t : nlp.workerTerms()) {
+      moved_costs += t.cost;
+      work_worker += ocp.termWork(t);
+    }
+    for (const auto& t : nlp.callerTerms()) work_all += ocp.termWork(t);
+    work_all += work_worker;
+    EXPECT_GT(moved_costs, 0) << primitive;  // the balancing did move terms
+    EXPECT_GT(work_worker, 0.45 * work_all) << primitive;
+    EXPECT_EQ(nlp.callerTerms().size() + nlp.workerTerms().size(), caller.size() + worker.size());
+    Eigen::VectorXd g;
+    std::vector<double> j(nj), h(nh);
+    ASSERT_TRUE(nlp.derivatives(z, 0.7, y, g, j.data(), h.data()));
+    for (int i = 0; i < n; ++i) ASSERT_EQ(g[i], g0[i]) << primitive << " gradient " << i;
+    for (int k = 0; k < nj; ++k) ASSERT_EQ(j[k], j0[k]) << primitive << " J " << k;
+    for (int k = 0; k < nh; ++k) ASSERT_EQ(h[k], h0[k]) << primitive << " H " << k;
+  }
+}
