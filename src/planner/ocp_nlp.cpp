@@ -13,14 +13,12 @@ OcpNlp::OcpNlp(const Ocp& ocp, bool user_scaling, const Eigen::VectorXd* x0, int
   pattern_.jac_cols = ocp.jacobianCols();
   pattern_.hess_rows = ocp.hessianRows();
   pattern_.hess_cols = ocp.hessianCols();
-  for (int c = 0; c < ocp.numConstraintTerms(); ++c) caller_terms_.push_back({false, c});
-  for (int k = 0; k < ocp.numCostTerms(); ++k) caller_terms_.push_back({true, k});
-  if (threads >= 2) {
-    splitTerms();
-    worker_ = std::make_unique<common::WorkerThread>();
-    jac1_.resize(ocp.jacobianNonzeros());
-    hess1_.resize(ocp.hessianNonzeros());
-  }
+  // The same split with one thread (the second list evaluated after the first): the derivatives, and so the
+  // iterates and the primitive, do not depend on the number of cores.
+  splitTerms();
+  if (threads >= 2) worker_ = std::make_unique<common::WorkerThread>();
+  jac1_.resize(ocp.jacobianNonzeros());
+  hess1_.resize(ocp.hessianNonzeros());
 }
 
 // The terms are split between the caller and the worker; each thread adds its terms, in its order, into its own
@@ -109,25 +107,23 @@ bool OcpNlp::constraints(const Eigen::VectorXd& x, Eigen::VectorXd& g) {
 bool OcpNlp::derivatives(const Eigen::VectorXd& x, double obj_factor, const Eigen::VectorXd& y, Eigen::VectorXd& grad,
                          double* jac, double* hess) {
   const int nj = ocp_.jacobianNonzeros(), nh = ocp_.hessianNonzeros();
-  if (worker_) {  // started first: it zeroes its own buffers while the caller zeroes the outputs
-    worker_->run([&] {
-      grad1_.setZero(pattern_.n);
-      std::fill(jac1_.begin(), jac1_.end(), 0.0);
-      std::fill(hess1_.begin(), hess1_.end(), 0.0);
-      ocp_.addDerivatives(x.data(), obj_factor, y.data(), worker_terms_, scratch_[1], grad1_.data(), jac1_.data(),
-                          hess1_.data());
-    });
-  }
+  auto second = [&] {  // the worker's list into its own buffers
+    grad1_.setZero(pattern_.n);
+    std::fill(jac1_.begin(), jac1_.end(), 0.0);
+    std::fill(hess1_.begin(), hess1_.end(), 0.0);
+    ocp_.addDerivatives(x.data(), obj_factor, y.data(), worker_terms_, scratch_[1], grad1_.data(), jac1_.data(),
+                        hess1_.data());
+  };
+  if (worker_) worker_->run(second);  // started first: it zeroes its buffers while the caller zeroes the outputs
   grad.setZero(pattern_.n);
   std::fill(jac, jac + nj, 0.0);
   std::fill(hess, hess + nh, 0.0);
   ocp_.addDerivatives(x.data(), obj_factor, y.data(), caller_terms_, scratch_[0], grad.data(), jac, hess);
-  if (worker_) {
-    worker_->wait();
-    grad += grad1_;
-    for (int k = 0; k < nj; ++k) jac[k] += jac1_[k];
-    for (int k = 0; k < nh; ++k) hess[k] += hess1_[k];
-  }
+  if (worker_) worker_->wait();
+  else second();
+  grad += grad1_;
+  for (int k = 0; k < nj; ++k) jac[k] += jac1_[k];
+  for (int k = 0; k < nh; ++k) hess[k] += hess1_[k];
   ocp_.addConstantDerivatives(obj_factor, jac, hess);
   return true;
 }

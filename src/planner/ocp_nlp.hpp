@@ -14,7 +14,8 @@ namespace centaur::planner {
 class OcpNlp final : public ocp_solver::Nlp {
  public:
   /// x0: the initial point (the OCP's guess if null); user_scaling: use Ocp::scale() as variable scale;
-  /// threads: 1 or 2 (the derivatives are split between two threads by estimated work).
+  /// threads: 1 or 2. The terms are split into two lists by estimated work; with 2 threads the second list runs
+  /// on a worker thread, with 1 after the first. The derivatives are the same bit for bit either way.
   OcpNlp(const Ocp& ocp, bool user_scaling, const Eigen::VectorXd* x0, int threads = 1);
 
   const ocp_solver::SparsePattern& pattern() const override { return pattern_; }
@@ -26,7 +27,7 @@ class OcpNlp final : public ocp_solver::Nlp {
   bool derivatives(const Eigen::VectorXd& x, double obj_factor, const Eigen::VectorXd& y, Eigen::VectorXd& grad,
                    double* jac, double* hess) override;
 
-  /// The terms each thread evaluates, in its order (the worker's list is empty with one thread).
+  /// The two lists of terms, each in the order it is evaluated (the second on the worker thread, if any).
   const std::vector<Ocp::TermRef>& callerTerms() const { return caller_terms_; }
   const std::vector<Ocp::TermRef>& workerTerms() const { return worker_terms_; }
 

@@ -210,10 +210,11 @@ TEST(Derivatives, SplitAndTwoThreadEvaluationEqualsTheSeparateCalls) {
   }
 }
 
-TEST(Derivatives, BalancedTwoThreadSplitSumsExactlyAsTheBaseSplit) {
+TEST(Derivatives, BalancedSplitSumsExactlyAsTheBaseSplitOnOneOrTwoThreads) {
   // The base split: the worker takes the constraint terms after half of their estimated work, the caller the rest
   // and every cost term; each sums its terms in order and the caller adds the worker's sums. The balanced split
-  // moves terms to the worker only where no sum changes, so its derivatives must equal these bit for bit.
+  // moves terms to the worker only where no sum changes, so its derivatives must equal these bit for bit, and one
+  // thread (the worker's list evaluated after the caller's) must give the same bits as two.
   for (const std::string primitive : {"squat-jump", "half-squat-jump"}) {
     const JumpProblem problem(loadJumpConfig(primitive, "", {}));
     const Ocp& ocp = problem.ocp();
@@ -223,7 +224,7 @@ TEST(Derivatives, BalancedTwoThreadSplitSumsExactlyAsTheBaseSplit) {
     for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * U(rng) * ocp.scale()[i];
     for (int j = 0; j < y.size(); ++j) y[j] = U(rng);
     const int nc = ocp.numConstraintTerms();
-    double total = 0.0, acc = 0.0, work_worker = 0.0, work_all = 0.0;
+    double total = 0.0, acc = 0.0;
     for (int c = 0; c < nc; ++c) total += ocp.termWork({false, c});
     int split = 0;
     while (split < nc && acc < 0.5 * total) acc += ocp.termWork({false, split++});
@@ -240,22 +241,25 @@ TEST(Derivatives, BalancedTwoThreadSplitSumsExactlyAsTheBaseSplit) {
     for (int k = 0; k < nh; ++k) h0[k] += h1[k];
     ocp.addConstantDerivatives(0.7, j0.data(), h0.data());
 
-    OcpNlp nlp(ocp, true, nullptr, 2);
-    int moved_costs = 0;
-    for (const auto& t : nlp.workerTerms()) {
-      moved_costs += t.cost;
-      work_worker += ocp.termWork(t);
+    for (int threads : {2, 1}) {
+      OcpNlp nlp(ocp, true, nullptr, threads);
+      int moved_costs = 0;
+      double work_worker = 0.0, work_all = 0.0;
+      for (const auto& t : nlp.workerTerms()) {
+        moved_costs += t.cost;
+        work_worker += ocp.termWork(t);
+      }
+      for (const auto& t : nlp.callerTerms()) work_all += ocp.termWork(t);
+      work_all += work_worker;
+      EXPECT_GT(moved_costs, 0) << primitive;  // the balancing did move terms
+      EXPECT_GT(work_worker, 0.45 * work_all) << primitive;
+      EXPECT_EQ(nlp.callerTerms().size() + nlp.workerTerms().size(), caller.size() + worker.size());
+      Eigen::VectorXd g;
+      std::vector<double> j(nj), h(nh);
+      ASSERT_TRUE(nlp.derivatives(z, 0.7, y, g, j.data(), h.data()));
+      for (int i = 0; i < n; ++i) ASSERT_EQ(g[i], g0[i]) << primitive << threads << " gradient " << i;
+      for (int k = 0; k < nj; ++k) ASSERT_EQ(j[k], j0[k]) << primitive << threads << " J " << k;
+      for (int k = 0; k < nh; ++k) ASSERT_EQ(h[k], h0[k]) << primitive << threads << " H " << k;
     }
-    for (const auto& t : nlp.callerTerms()) work_all += ocp.termWork(t);
-    work_all += work_worker;
-    EXPECT_GT(moved_costs, 0) << primitive;  // the balancing did move terms
-    EXPECT_GT(work_worker, 0.45 * work_all) << primitive;
-    EXPECT_EQ(nlp.callerTerms().size() + nlp.workerTerms().size(), caller.size() + worker.size());
-    Eigen::VectorXd g;
-    std::vector<double> j(nj), h(nh);
-    ASSERT_TRUE(nlp.derivatives(z, 0.7, y, g, j.data(), h.data()));
-    for (int i = 0; i < n; ++i) ASSERT_EQ(g[i], g0[i]) << primitive << " gradient " << i;
-    for (int k = 0; k < nj; ++k) ASSERT_EQ(j[k], j0[k]) << primitive << " J " << k;
-    for (int k = 0; k < nh; ++k) ASSERT_EQ(h[k], h0[k]) << primitive << " H " << k;
   }
 }
