@@ -12,6 +12,7 @@
 #include "model/template_params.hpp"
 #include "ocp_solver/stage_kkt.hpp"
 #include "planner/jump_problem.hpp"
+#include "common/retain_memory.hpp"
 #include "planner/ocp_nlp.hpp"
 #include "planner/template_elements.hpp"
 
@@ -120,6 +121,19 @@ void BM_NlpDerivatives(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_NlpDerivatives)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// Setting up the NLP of a solve (every cold solve and re-plan does it): the split of the terms between the two
+// derivative lists and the worker thread's start. Arg 1: with freed memory kept in the process, as `centaur` does
+// (common::retainFreedMemory; it stays in effect for the benchmarks after this one).
+void BM_NlpSetup(benchmark::State& state) {
+  static const NlpPoint p;
+  if (state.range(0) == 1) common::retainFreedMemory();
+  for (auto _ : state) {
+    OcpNlp nlp(p.problem.ocp(), true, nullptr, 2);
+    benchmark::DoNotOptimize(&nlp);
+  }
+}
+BENCHMARK(BM_NlpSetup)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The stage-wise KKT solver on the squat jump's Newton system at the perturbed guess (barrier diagonal 1,
 // inequality rows condensed with weight 1): structure analysis, factorization and solve (with refinement).

@@ -329,20 +329,17 @@ double Ocp::termWork(TermRef r) const {
   return ni * no + (t.has_hessian && !t.const_hess ? ni * ni : 0.0);
 }
 
-Ocp::Footprint Ocp::footprint(TermRef r) const {
+void Ocp::footprint(TermRef r, Footprint& f) const {
   const Instance& t = r.cost ? cost_terms_[r.index] : constraint_terms_[r.index];
-  Footprint f;
-  if (!r.cost && t.const_jac) return f;
+  f.jac.clear();
+  f.hess.clear();
+  f.grad.clear();
+  if (!r.cost && t.const_jac) return;
   if (r.cost) f.grad = t.in;
   else
     for (const auto& [k, slot] : t.jac_nz) f.jac.push_back(slot);
   if (t.has_hessian && !t.const_hess)
     for (const auto& [k, slot] : t.hess_nz) f.hess.push_back(slot);
-  for (auto* v : {&f.jac, &f.hess, &f.grad}) {
-    std::sort(v->begin(), v->end());
-    v->erase(std::unique(v->begin(), v->end()), v->end());
-  }
-  return f;
 }
 
 void Ocp::addDerivatives(const double* z, double sigma, const double* lambda, const std::vector<TermRef>& terms,

@@ -108,11 +108,12 @@ class Ocp {
   /// Relative work of a term's derivatives (for splitting the terms between threads).
   double termWork(TermRef t) const;
   /// What a term's derivatives add to at every call (a constant Jacobian or cost Hessian is added once, by
-  /// addConstantDerivatives): Jacobian slots, Hessian slots and gradient entries, each listed once.
+  /// addConstantDerivatives): Jacobian slots, Hessian slots and gradient entries. A value may be listed twice when
+  /// a term takes the same variable twice. `f` is overwritten (its storage reused).
   struct Footprint {
     std::vector<int> jac, hess, grad;
   };
-  Footprint footprint(TermRef t) const;
+  void footprint(TermRef t, Footprint& f) const;
   /// grad, jac, hess += the derivatives that depend on z of the listed terms, in that order. jac and hess are in
   /// the Jacobian / Hessian structure; nothing is zeroed.
   void addDerivatives(const double* z, double sigma, const double* lambda, const std::vector<TermRef>& terms,

@@ -35,26 +35,43 @@ void OcpNlp::splitTerms() {
   for (int c = 0; c < nc; ++c) total += o.termWork({false, c});
   int split = 0;
   while (split < nc && acc < 0.5 * total) acc += o.termWork({false, split++});
-  // Values as one index space: Jacobian slots, Hessian slots, gradient entries.
-  auto ids = [&](const Ocp::TermRef& t) {
-    const Ocp::Footprint f = o.footprint(t);
-    std::vector<int> v(f.jac);
-    for (int h : f.hess) v.push_back(nj + h);
-    for (int g : f.grad) v.push_back(nj + nh + g);
+  // Values as one index space (Jacobian slots, Hessian slots, gradient entries), each listed once per term.
+  const int nv = nj + nh + pattern_.n;
+  Ocp::Footprint f;
+  std::vector<int> v, mark(nv, -1);
+  int stamp = 0;
+  auto ids = [&](const Ocp::TermRef& t) -> const std::vector<int>& {
+    o.footprint(t, f);
+    v.clear();
+    ++stamp;
+    auto add = [&](int id) {
+      if (mark[id] != stamp) mark[id] = stamp, v.push_back(id);
+    };
+    for (int j : f.jac) add(j);
+    for (int h : f.hess) add(nj + h);
+    for (int g : f.grad) add(nj + nh + g);
     return v;
   };
   std::vector<Ocp::TermRef> caller;
   for (int c = 0; c < split; ++c) caller.push_back({false, c});
   for (int k = 0; k < o.numCostTerms(); ++k) caller.push_back({true, k});
-  std::vector<std::vector<int>> caller_ids(caller.size());
-  std::vector<std::vector<int>> stack(nj + nh + pattern_.n);  // per value: positions of the caller's terms
-  std::vector<int> worker_count(stack.size(), 0);
+  // Every value a caller term adds to, in the caller's order ("occurrences"), linked to the previous occurrence of
+  // the same value: top[id] is the caller's last term there, count[id] how many caller terms add to it.
+  std::vector<int> occ_start(caller.size() + 1), occ_id, occ_prev, top(nv, -1), count(nv, 0), worker_count(nv, 0);
+  occ_id.reserve(nv);
+  occ_prev.reserve(nv);
   double work_caller = 0.0, work_worker = 0.0;
   for (std::size_t p = 0; p < caller.size(); ++p) {
-    caller_ids[p] = ids(caller[p]);
-    for (int id : caller_ids[p]) stack[id].push_back(static_cast<int>(p));
+    occ_start[p] = static_cast<int>(occ_id.size());
+    for (int id : ids(caller[p])) {
+      occ_prev.push_back(top[id]);
+      top[id] = static_cast<int>(occ_id.size());
+      occ_id.push_back(id);
+      ++count[id];
+    }
     work_caller += o.termWork(caller[p]);
   }
+  occ_start[caller.size()] = static_cast<int>(occ_id.size());
   worker_terms_.clear();
   for (int c = split; c < nc; ++c) {
     worker_terms_.push_back({false, c});
@@ -66,10 +83,15 @@ void OcpNlp::splitTerms() {
     const double w = o.termWork(caller[p]);
     if (w <= 0.0 || work_worker + w > work_caller - w) continue;
     bool ok = true;
-    for (int id : caller_ids[p]) ok = ok && stack[id].back() == p && (stack[id].size() == 1 || worker_count[id] == 0);
+    for (int e = occ_start[p]; e < occ_start[p + 1] && ok; ++e) {
+      const int id = occ_id[e];
+      ok = top[id] == e && (count[id] == 1 || worker_count[id] == 0);
+    }
     if (!ok) continue;
-    for (int id : caller_ids[p]) {
-      stack[id].pop_back();
+    for (int e = occ_start[p]; e < occ_start[p + 1]; ++e) {
+      const int id = occ_id[e];
+      top[id] = occ_prev[e];
+      --count[id];
       ++worker_count[id];
     }
     moved[p] = 1;
