@@ -19,6 +19,16 @@ namespace {
 
 double relErr(double a, double b) { return std::abs(a - b) / std::max(1.0, std::max(std::abs(a), std::abs(b))); }
 
+// The OCP's guess perturbed by 5 % of each variable's scale, and multipliers in [-1, 1].
+void perturbedPoint(const Ocp& ocp, unsigned seed, Eigen::VectorXd& z, Eigen::VectorXd& y) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  z = ocp.guess();
+  y.resize(ocp.numConstraints());
+  for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * U(rng) * ocp.scale()[i];
+  for (int j = 0; j < y.size(); ++j) y[j] = U(rng);
+}
+
 // Jacobian of e at x by central differences of eval().
 std::vector<double> fdJacobian(const Element& e, std::vector<double> x, double h) {
   const int ni = e.numInputs(), no = e.numOutputs();
@@ -188,11 +198,8 @@ TEST(Derivatives, SplitAndTwoThreadEvaluationEqualsTheSeparateCalls) {
   for (const std::string primitive : {"squat-jump", "half-squat-jump"}) {
     const JumpProblem problem(loadJumpConfig(primitive, "", {}));
     const Ocp& ocp = problem.ocp();
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> U(-1.0, 1.0);
-    Eigen::VectorXd z = ocp.guess(), y(ocp.numConstraints());
-    for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * U(rng) * ocp.scale()[i];
-    for (int j = 0; j < y.size(); ++j) y[j] = U(rng);
+    Eigen::VectorXd z, y;
+    perturbedPoint(ocp, 11, z, y);
     Eigen::VectorXd g0(ocp.numVariables());
     std::vector<double> j0(ocp.jacobianNonzeros()), h0(ocp.hessianNonzeros());
     ocp.gradient(z.data(), g0.data());
@@ -218,11 +225,8 @@ TEST(Derivatives, BalancedSplitSumsExactlyAsTheBaseSplitOnOneOrTwoThreads) {
   for (const std::string primitive : {"squat-jump", "half-squat-jump"}) {
     const JumpProblem problem(loadJumpConfig(primitive, "", {}));
     const Ocp& ocp = problem.ocp();
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> U(-1.0, 1.0);
-    Eigen::VectorXd z = ocp.guess(), y(ocp.numConstraints());
-    for (int i = 0; i < z.size(); ++i) z[i] += 0.05 * U(rng) * ocp.scale()[i];
-    for (int j = 0; j < y.size(); ++j) y[j] = U(rng);
+    Eigen::VectorXd z, y;
+    perturbedPoint(ocp, 5, z, y);
     const int nc = ocp.numConstraintTerms();
     double total = 0.0, acc = 0.0;
     for (int c = 0; c < nc; ++c) total += ocp.termWork({false, c});
