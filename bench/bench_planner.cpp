@@ -178,6 +178,16 @@ void BM_StageKktFactor(benchmark::State& state) {
 }
 BENCHMARK(BM_StageKktFactor)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
+// The structure analysis of a solve's KKT solver (every cold solve and re-plan builds one).
+void BM_StageKktAnalyze(benchmark::State& state) {
+  static KktPoint k;
+  for (auto _ : state) {
+    auto s = k.solver();
+    benchmark::DoNotOptimize(&s);
+  }
+}
+BENCHMARK(BM_StageKktAnalyze)->Unit(benchmark::kMicrosecond);
+
 void BM_StageKktSolve(benchmark::State& state) {
   static KktPoint k;
   auto s = k.solver();
