@@ -385,8 +385,12 @@ void Ocp::addCostTerm(const Instance& t, const double* z, double sigma, Scratch&
     t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
     scatterHessian(t, s.hess.data(), 1.0, hess);
   }
+  // The weighted gradient is rounded before it is added (a separate loop, which the compiler does not fuse into
+  // a multiply-add): every addition into grad is then the same on any build, so moving a term between the
+  // derivative lists (OcpNlp::splitTerms) changes no result with FMA either.
+  for (int k = 0; k < no * ni; ++k) s.jac[k] *= t.weight;
   for (int j = 0; j < no; ++j)
-    for (int i = 0; i < ni; ++i) grad[t.in[i]] += t.weight * s.jac[j * ni + i];
+    for (int i = 0; i < ni; ++i) grad[t.in[i]] += s.jac[j * ni + i];
 }
 
 double Ocp::objective(const double* z) const {
