@@ -9,10 +9,10 @@
 #include <chrono>
 #include <random>
 
+#include "common/retain_memory.hpp"
 #include "model/template_params.hpp"
 #include "ocp_solver/stage_kkt.hpp"
 #include "planner/jump_problem.hpp"
-#include "common/retain_memory.hpp"
 #include "planner/ocp_nlp.hpp"
 #include "planner/template_elements.hpp"
 

@@ -24,8 +24,8 @@ OcpNlp::OcpNlp(const Ocp& ocp, bool user_scaling, const Eigen::VectorXd* x0, int
 // The terms are split between the caller and the worker; each thread adds its terms, in its order, into its own
 // buffers, and the caller then adds the worker's buffers to its own. The base split gives the worker the
 // constraint terms after half of their estimated work and leaves the rest and every cost term to the caller (it
-// differs from one thread only in the rounding of values both threads add to). To balance the work without
-// changing any sum of the base split, the caller's list is walked backwards: a term moves to the end of the
+// differs from one sum over all terms only in the rounding of values both lists add to). To balance the work
+// without changing any sum of the base split, the caller's list is walked backwards: a term moves to the end of the
 // worker's list if that improves the balance and, for every value it adds to, it is the caller's last term there
 // and either the caller's only one (c + W == W + c) or the worker has none (the caller's sum ends with it anyway).
 void OcpNlp::splitTerms() {
