@@ -160,7 +160,8 @@ struct KktPoint {
   }
 };
 
-// Arg: 1 = the stage blocks filled on a second thread ahead of the recursion (setPipelined), as the planner does.
+// Arg: 1 = the stage blocks filled and the row part of each stage run on a second thread ahead of the cost parts
+// (setPipelined), as the planner does.
 void BM_StageKktFactor(benchmark::State& state) {
   static KktPoint k;
   auto s = k.solver();

@@ -1,6 +1,7 @@
 #include "ocp_solver/riccati.hpp"
 
 #include <cmath>
+#include <thread>
 
 #include <Eigen/SparseCore>
 
@@ -58,9 +59,10 @@ void RiccatiSolver::Stage::solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const {
   rhs.noalias() = eig.eigenvectors() * t;
 }
 
-// Factor one stage given Q and the stacked rows Cs (filled by the caller): rank split of the rows by the
-// controls, reduced Hessian on the free control directions, cost-to-go P and pending rows Gamma.
-bool RiccatiSolver::eliminate(Stage& s) {
+// The row part of one stage, given the stacked rows Cs (filled by the caller): their equilibration, the rank split
+// by the controls, the pending rows Gamma for the previous stage and E. It reads no cost, so it can run ahead of
+// the cost part. Its inertia contributions are kept in the stage (added by eliminateCost, in stage order).
+void RiccatiSolver::eliminateRows(Stage& s) {
   const int nx = s.nx, nu = s.nu, n = nx + nu, m = s.m;
   s.row_scale.resize(m);
   for (int i = 0; i < m; ++i) {
@@ -87,11 +89,12 @@ bool RiccatiSolver::eliminate(Stage& s) {
   for (int i = 0; i < m; ++i) X.row(i) = s.Cs.row(rp[i]).head(nx);
   s.lu.applyRowTransform(X);
   s.kept.clear();
+  s.dependent = 0;
   for (int i = r; i < m; ++i) {
     if (nx > 0 && X.row(i).cwiseAbs().maxCoeff() > opt_.rank_tol) {
       s.kept.push_back(i - r);
     } else {
-      ++inertia_.zero;
+      ++s.dependent;
     }
   }
   s.Gamma.resize(static_cast<int>(s.kept.size()), nx);
@@ -102,6 +105,16 @@ bool RiccatiSolver::eliminate(Stage& s) {
   s.E.leftCols(nx) = -X.topRows(r);
   s.E.rightCols(nv) = -s.lu.packed().block(0, r, r, nv);
   solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>(), s.E);
+}
+
+// The cost part of one stage, after its row part and given Q: the reduced Hessian on the free directions, its
+// factor, the cost-to-go P. Adds the stage's inertia (rows and dynamics first). False on an indefinite reduced
+// Hessian (unless full_inertia).
+bool RiccatiSolver::eliminateCost(Stage& s) {
+  const int nx = s.nx, r = s.rank, nv = s.nv, w = nx + nv;
+  inertia_.positive += s.dyn_pairs + r;
+  inertia_.negative += s.dyn_pairs + r;
+  inertia_.zero += s.dependent;
 
   // Reduced Hessian Qh = T' Qp T with T = [I; E]: Qp_WW + E' F + F' E, F = Qp_BW + 1/2 Qp_BB E (lower
   // triangle only, then mirrored).
@@ -114,9 +127,6 @@ bool RiccatiSolver::eliminate(Stage& s) {
     s.Qh.triangularView<Eigen::Lower>() += s.F.transpose() * s.E;
     s.Qh.triangularView<Eigen::StrictlyUpper>() = s.Qh.transpose();
   }
-  inertia_.positive += r;
-  inertia_.negative += r;
-
   s.use_eig = false;
   s.K.resize(nv, nx);
   if (nv > 0) {
@@ -152,6 +162,52 @@ bool RiccatiSolver::eliminate(Stage& s) {
   return true;
 }
 
+// Row part of stage k: its dimensions, the stacked rows [C; Gamma_{k+1} M] and the sparse dynamics M = [A B]
+// (continuity Jacobians are mostly identity and diagonal blocks), then eliminateRows.
+void RiccatiSolver::stageRows(const std::vector<StageQp>& qp, int k) {
+  const int N = static_cast<int>(qp.size()) - 1;
+  Stage& s = st_[k];
+  const StageQp& d = qp[k];
+  s.nx = d.nx;
+  s.nu = d.nu;
+  const int n = d.nx + d.nu;
+  const Stage* next = k < N ? &st_[k + 1] : nullptr;
+  const int npend = next ? static_cast<int>(next->Gamma.rows()) : 0;
+  s.m_own = static_cast<int>(d.C.rows());
+  s.m = s.m_own + npend;
+  s.dyn_pairs = next ? next->nx : 0;
+  s.Cs.resize(s.m, n);
+  s.Cs.topRows(s.m_own) = d.C;
+  if (next) {
+    sparseDynamics(d.A, d.B, next->nx, s.Msp);
+    if (npend > 0) denseTimesSparse(next->Gamma, s.Msp, s.Cs.bottomRows(npend), false);
+  }
+  eliminateRows(s);
+}
+
+// Cost part of stage k (after its row part and the cost part of stage k+1): Q = H + M' P_{k+1} M, then
+// eliminateCost.
+bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
+  const int N = static_cast<int>(qp.size()) - 1;
+  Stage& s = st_[k];
+  const StageQp& d = qp[k];
+  const int n = d.nx + d.nu;
+  s.Q = d.H;
+  if (k < N) {
+    const Stage& next = st_[k + 1];
+    s.PM.resize(next.nx, n);
+    denseTimesSparse(next.P, s.Msp, s.PM, false);
+    s.PMt = s.PM.transpose();
+    denseTimesSparse(s.PMt, s.Msp, s.Q, true);
+  }
+  return eliminateCost(s);
+}
+
+void RiccatiSolver::setParallel(bool on) {
+  if (on && !par_) par_ = std::make_unique<Parallel>();
+  if (!on) par_.reset();
+}
+
 RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
                                             const std::function<void(int)>& before_stage) {
   const int N = static_cast<int>(qp.size()) - 1;
@@ -159,46 +215,47 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
   inertia_ = Inertia{};
   failed_stage_ = -1;
   factored_ = false;
-  for (int k = N; k >= 0; --k) {
-    if (before_stage) before_stage(k);
-    Stage& s = st_[k];
-    const StageQp& d = qp[k];
-    s.nx = d.nx;
-    s.nu = d.nu;
-    const int n = d.nx + d.nu;
-    const Stage* next = k < N ? &st_[k + 1] : nullptr;
-    const int npend = next ? static_cast<int>(next->Gamma.rows()) : 0;
-    s.m_own = static_cast<int>(d.C.rows());
-    s.m = s.m_own + npend;
-    s.Q = d.H;
-    s.Cs.resize(s.m, n);
-    s.Cs.topRows(s.m_own) = d.C;
-    if (next) {
-      // Q += M' P M and the next stage's pending rows Gamma M, with the dynamics M = [A B] as a sparse matrix
-      // (continuity Jacobians are mostly identity and diagonal blocks).
-      sparseDynamics(d.A, d.B, next->nx, s.Msp);
-      s.PM.resize(next->nx, n);
-      denseTimesSparse(next->P, s.Msp, s.PM, false);
-      s.PMt = s.PM.transpose();
-      denseTimesSparse(s.PMt, s.Msp, s.Q, true);
-      if (npend > 0) denseTimesSparse(next->Gamma, s.Msp, s.Cs.bottomRows(npend), false);
-      inertia_.positive += next->nx;
-      inertia_.negative += next->nx;
-    }
-    if (!eliminate(s)) {
-      failed_stage_ = k;
-      return Status::kWrongInertia;
-    }
+  if (par_) {
+    // The worker runs the row parts (and before_stage) of stages N..0 ahead of the cost parts. After an early stop
+    // it still calls before_stage for every stage, as the sequential order would not (callers may rely on it).
+    Parallel& pl = *par_;
+    pl.rows_done.store(N + 1, std::memory_order_relaxed);
+    pl.stop.store(false, std::memory_order_relaxed);
+    pl.worker.run([this, &qp, &before_stage, &pl, N] {
+      for (int k = N; k >= 0; --k) {
+        if (before_stage) before_stage(k);
+        if (!pl.stop.load(std::memory_order_relaxed)) stageRows(qp, k);
+        pl.rows_done.store(k, std::memory_order_release);
+      }
+    });
   }
+  bool ok = true;
+  for (int k = N; k >= 0 && ok; --k) {
+    if (par_) {
+      while (par_->rows_done.load(std::memory_order_acquire) > k) std::this_thread::yield();
+    } else {
+      if (before_stage) before_stage(k);
+      stageRows(qp, k);
+    }
+    ok = stageCost(qp, k);
+    if (!ok) failed_stage_ = k;
+  }
+  if (par_) {
+    par_->stop.store(true, std::memory_order_relaxed);
+    par_->worker.wait();
+  }
+  if (!ok) return Status::kWrongInertia;
   // The initial state: a stage without state whose controls are x_0, cost P_0 and rows the pending ones of stage 0.
   Stage& v = st_[N + 1];
   v.nx = 0;
   v.nu = st_[0].nx;
   v.m_own = 0;
   v.m = static_cast<int>(st_[0].Gamma.rows());
-  v.Q = st_[0].P;
+  v.dyn_pairs = 0;
   v.Cs = st_[0].Gamma;
-  if (!eliminate(v)) {
+  eliminateRows(v);
+  v.Q = st_[0].P;
+  if (!eliminateCost(v)) {
     failed_stage_ = N + 1;
     return Status::kWrongInertia;
   }

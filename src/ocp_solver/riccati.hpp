@@ -20,8 +20,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
 
+#include <atomic>
 #include <functional>
+#include <memory>
 #include <vector>
+
+#include "common/worker_thread.hpp"
 
 #include "ocp_solver/pivoted_lu.hpp"
 #include "ocp_solver/stage_qp.hpp"
@@ -41,8 +45,13 @@ class RiccatiSolver {
 
   /// Factor the matrix part (H, A, B, C) of `qp`. kWrongInertia as soon as a reduced Hessian is not positive
   /// definite (unless full_inertia); kSingular if rows are dependent (the counts are still computed).
-  /// before_stage(k), if given, is called before stage k's blocks are first read (stages N..0, in this order).
+  /// before_stage(k), if given, is called before stage k's blocks are first read (stages N..0, in this order; on
+  /// the second thread when parallel, and then for every stage even after an early kWrongInertia).
   Status factor(const std::vector<StageQp>& qp, const std::function<void(int)>& before_stage = {});
+  /// Run each stage's row part (the rank split of its rows, which needs no cost) on a second thread, ahead of the
+  /// cost parts (the reduced Hessians and the cost-to-go) on the calling one. The factors are bit-identical.
+  void setParallel(bool on);
+  bool parallel() const { return par_ != nullptr; }
   /// Solve with the right-hand sides (h, b, c) of `qp` (same matrices as the last factor()). Allowed after
   /// kOk or kSingular (dependent rows get zero multipliers) and after kWrongInertia with full_inertia.
   void solve(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol);
@@ -54,7 +63,15 @@ class RiccatiSolver {
 
  private:
   struct Stage;
-  bool eliminate(Stage& s);
+  struct Parallel {
+    common::WorkerThread worker;
+    std::atomic<int> rows_done{0};  // the row parts of stages rows_done..N are done
+    std::atomic<bool> stop{false};  // the cost parts stopped early: skip the remaining row parts
+  };
+  void stageRows(const std::vector<StageQp>& qp, int k);
+  bool stageCost(const std::vector<StageQp>& qp, int k);
+  void eliminateRows(Stage& s);
+  bool eliminateCost(Stage& s);
   void backwardVectors(const std::vector<StageQp>& qp);
   void forward(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol);
   void stageForward(Stage& s, const Eigen::VectorXd& x, const Eigen::VectorXd& eta_pending, Eigen::VectorXd& z,
@@ -65,11 +82,14 @@ class RiccatiSolver {
   Inertia inertia_;
   int failed_stage_ = -1;
   bool factored_ = false;
+  std::unique_ptr<Parallel> par_;
 };
 
 /// The per-stage factors (public only so that the implementation file can define it).
 struct RiccatiSolver::Stage {
   int nx = 0, nu = 0, m = 0, m_own = 0, rank = 0, nv = 0;
+  int dependent = 0;          // rows dependent on the others (zero eigenvalues of the KKT matrix)
+  int dyn_pairs = 0;          // dynamics rows into the next stage (one +1 and one -1 eigenvalue each)
   Eigen::MatrixXd Q;          // (nx+nu)^2, the stage cost plus the pulled-back cost-to-go
   Eigen::MatrixXd Cs;         // stacked rows (own, then pending of the next stage), equilibrated
   Eigen::VectorXd row_scale;  // Cs = diag(row_scale) * [C; Gamma_next M]

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <map>
 #include <set>
-#include <thread>
 
 namespace centaur::ocp_solver {
 
@@ -166,10 +165,7 @@ void StageKktSolver::rowVector(const Row& row, const double* jac, Eigen::VectorX
   }
 }
 
-void StageKktSolver::setPipelined(bool on) {
-  if (on && !pipe_) pipe_ = std::make_unique<Pipeline>();
-  if (!on) pipe_.reset();
-}
+void StageKktSolver::setPipelined(bool on) { riccati_.setParallel(on); }
 
 void StageKktSolver::fillStage(int k) {
   StageQp& q = qp_[k];
@@ -240,20 +236,10 @@ KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Ei
   dx_diag_ = dx;
   dc_ = dc;
   RiccatiSolver::Status st;
-  if (pipe_) {
-    // The worker fills stages N..0 in the order the recursion visits them; the recursion waits for each.
-    Pipeline& pl = *pipe_;
-    pl.lowest_filled.store(N_ + 1, std::memory_order_relaxed);
-    pl.worker.run([this, &pl] {
-      for (int k = N_; k >= 0; --k) {
-        fillStage(k);
-        pl.lowest_filled.store(k, std::memory_order_release);
-      }
-    });
-    st = riccati_.factor(qp_, [&pl](int k) {
-      while (pl.lowest_filled.load(std::memory_order_acquire) > k) std::this_thread::yield();
-    });
-    pl.worker.wait();  // also after an early stop: solve() and the next factor() need every stage
+  if (riccati_.parallel()) {
+    // The second thread fills each stage just before its row part (every stage, also after an early stop: solve()
+    // and the next factor() need them all).
+    st = riccati_.factor(qp_, [this](int k) { fillStage(k); });
   } else {
     for (int k = N_; k >= 0; --k) fillStage(k);
     st = riccati_.factor(qp_);

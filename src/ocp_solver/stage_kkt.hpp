@@ -13,13 +13,9 @@
 // Fixed variables become unit rows. Inequality rows (d_c > 0) are penalties added to the stage Hessians; equality
 // rows are exact, or penalties under a dual regularization (d_c > 0), except the dynamics, which stay exact.
 // The structure is analysed once; factor() scatters the values into preallocated stage blocks.
-#include <atomic>
-#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include "common/worker_thread.hpp"
 
 #include "ocp_solver/kkt_system.hpp"
 #include "ocp_solver/riccati.hpp"
@@ -51,8 +47,9 @@ class StageKktSolver final : public KktSolver {
   /// relative residual is below 1e-12: rows whose controls were nearly dependent are passed to the previous
   /// stage by the recursion, which leaves an error of the size of the pivot threshold.
   void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy) override;
-  /// Fill the stage blocks on a second thread, each stage just before the recursion reaches it (the scattering of
-  /// the sparse values then overlaps the factorization; the results are bit-identical to the sequential ones).
+  /// Fill the stage blocks and run the row part of each stage of the recursion on a second thread, ahead of the
+  /// cost parts (RiccatiSolver::setParallel): the scattering of the sparse values and the rank splits of the rows
+  /// then overlap the reduced Hessians. The results are bit-identical to the sequential ones.
   void setPipelined(bool on);
   /// Relative residual of the last solve (after refinement).
   double lastResidual() const { return last_residual_; }
@@ -124,11 +121,6 @@ class StageKktSolver final : public KktSolver {
   RiccatiSolver riccati_;
   Eigen::VectorXd diag_;                      // dynamics row scale d (entry on x_{k+1})
   Eigen::VectorXd fill_a_;                    // row scratch of fillStage()
-  struct Pipeline {
-    common::WorkerThread worker;
-    std::atomic<int> lowest_filled{0};        // stages lowest_filled..N are filled
-  };
-  std::unique_ptr<Pipeline> pipe_;
 };
 
 }  // namespace centaur::ocp_solver

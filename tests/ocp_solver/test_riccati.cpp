@@ -281,3 +281,62 @@ TEST(Riccati, PlannerSizedSystem) {
   solver.solve(qp, sol);
   EXPECT_LT(relativeResidual(d, flatten(qp, sol)), 1e-10);
 }
+
+TEST(Riccati, ParallelRowPartsGiveBitIdenticalFactorsInertiaAndSolutions) {
+  // The row parts of the stages on a second thread ahead of the cost parts (setParallel): the same status,
+  // inertia counts and failing stage at every factorization (also when an indefinite stage stops the recursion
+  // early, and with dependent rows), the same solution to the last bit, and before_stage called for stages N..0
+  // in this order (every one of them when parallel, up to the failing one when sequential). One solver object
+  // each, reused over all instances as the interior point reuses it.
+  int early = 0, singular = 0, ok = 0;
+  for (const bool full : {false, true}) {
+    RiccatiSolver::Options o;
+    o.full_inertia = full;
+    RiccatiSolver seq(o), par(o);
+    par.setParallel(true);
+    ASSERT_TRUE(par.parallel());
+    for (unsigned seed = 400; seed < 460; ++seed) {
+      Gen g(seed);
+      const int N = 2 + seed % 7;
+      auto qp = randomQp(g, N, seed % 2 == 0 ? Curvature::kIndefinite : Curvature::kConvex, seed % 3 == 0);
+      StageQp& s = qp[g.i(0, N)];
+      const int m = static_cast<int>(s.C.rows());
+      if (seed % 4 == 1 && m >= 1) {  // a dependent row: twice the first one
+        s.C.conservativeResize(m + 1, s.C.cols());
+        s.c.conservativeResize(m + 1);
+        s.C.row(m) = 2.0 * s.C.row(0);
+        s.c[m] = 2.0 * s.c[0];
+      }
+      std::vector<int> seen_seq, seen_par;
+      const auto a = seq.factor(qp, [&](int k) { seen_seq.push_back(k); });
+      const auto b = par.factor(qp, [&](int k) { seen_par.push_back(k); });
+      ASSERT_EQ(a, b) << "seed " << seed;
+      EXPECT_EQ(seq.failedStage(), par.failedStage()) << "seed " << seed;
+      EXPECT_EQ(seq.inertia().positive, par.inertia().positive) << "seed " << seed;
+      EXPECT_EQ(seq.inertia().negative, par.inertia().negative) << "seed " << seed;
+      EXPECT_EQ(seq.inertia().zero, par.inertia().zero) << "seed " << seed;
+      ASSERT_EQ(static_cast<int>(seen_par.size()), N + 1) << "seed " << seed;
+      for (int i = 0; i <= N; ++i) EXPECT_EQ(seen_par[i], N - i) << "seed " << seed;
+      const bool stopped = a == RiccatiSolver::Status::kWrongInertia && !full;
+      const int last_seq = stopped ? std::max(seq.failedStage(), 0) : 0;
+      EXPECT_EQ(static_cast<int>(seen_seq.size()), stopped && seq.failedStage() <= N ? N + 1 - last_seq : N + 1)
+          << "seed " << seed;
+      early += stopped;
+      singular += a == RiccatiSolver::Status::kSingular;
+      ok += a == RiccatiSolver::Status::kOk;
+      if (stopped) continue;
+      std::vector<StageSolution> x, y;
+      seq.solve(qp, x);
+      par.solve(qp, y);
+      for (int k = 0; k <= N; ++k) {
+        ASSERT_EQ(x[k].x, y[k].x) << "seed " << seed << " stage " << k;
+        ASSERT_EQ(x[k].u, y[k].u) << "seed " << seed << " stage " << k;
+        ASSERT_EQ(x[k].lambda, y[k].lambda) << "seed " << seed << " stage " << k;
+        ASSERT_EQ(x[k].eta, y[k].eta) << "seed " << seed << " stage " << k;
+      }
+    }
+  }
+  EXPECT_GT(early, 0);
+  EXPECT_GT(singular, 0);
+  EXPECT_GT(ok, 0);
+}
