@@ -3,48 +3,11 @@
 #include <cmath>
 #include <thread>
 
-#include <Eigen/SparseCore>
-
 #include "common/eigen_empty.hpp"
+#include "ocp_solver/block_ops.hpp"
 
 namespace centaur::ocp_solver {
 
-namespace {
-
-// Gather rows/columns of `in` in the order `perm` (out(i, j) = in(perm[i], perm[j])).
-void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, Eigen::MatrixXd& out) {
-  const int n = static_cast<int>(perm.size());
-  out.resize(n, n);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) out(i, j) = in(perm[i], perm[j]);
-}
-
-// M = [A B] as a sparse matrix (its exact zeros dropped), reusing the storage of `out`.
-void sparseDynamics(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows, Eigen::SparseMatrix<double>& out) {
-  const int na = static_cast<int>(A.cols()), nb = static_cast<int>(B.cols());
-  out.resize(rows, na + nb);
-  out.reserve(2 * (na + nb) + rows);
-  for (int j = 0; j < na + nb; ++j) {
-    out.startVec(j);
-    const double* col = j < na ? A.col(j).data() : B.col(j - na).data();
-    for (int i = 0; i < rows; ++i)
-      if (col[i] != 0.0) out.insertBack(i, j) = col[i];
-  }
-  out.finalize();
-}
-
-// out = D S (or out += D S) for a dense D and a sparse S, column by column: out.col(j) += S(k, j) D.col(k) over
-// the nonzeros of column j in their order. The same sums in the same order as Eigen's dense-times-sparse
-// product, vectorized over the rows instead of one strided pass per row.
-template <class Out>
-void denseTimesSparse(const Eigen::MatrixXd& D, const Eigen::SparseMatrix<double>& S, Out&& out, bool add) {
-  for (int j = 0; j < S.outerSize(); ++j) {
-    if (!add) out.col(j).setZero();
-    for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it) out.col(j) += it.value() * D.col(it.index());
-  }
-}
-
-}  // namespace
 
 void RiccatiSolver::Stage::solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const {
   if (nv == 0) return;
@@ -64,12 +27,7 @@ void RiccatiSolver::Stage::solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const {
 // the cost part. Its inertia contributions are kept in the stage (added by eliminateCost, in stage order).
 void RiccatiSolver::eliminateRows(Stage& s) {
   const int nx = s.nx, nu = s.nu, n = nx + nu, m = s.m;
-  s.row_scale.resize(m);
-  for (int i = 0; i < m; ++i) {
-    const double a = n > 0 ? s.Cs.row(i).cwiseAbs().maxCoeff() : 0.0;
-    s.row_scale[i] = a > 0.0 ? 1.0 / a : 1.0;
-    s.Cs.row(i) *= s.row_scale[i];
-  }
+  equilibrateRows(s.Cs, s.row_scale);
   s.lu.compute(s.Cs.rightCols(nu), opt_.rank_tol);
   const int r = s.lu.rank();
   s.rank = r;
@@ -86,7 +44,11 @@ void RiccatiSolver::eliminateRows(Stage& s) {
   // rows on x alone (pending) or vanish (dependent rows of the whole KKT matrix: zero eigenvalues).
   Eigen::MatrixXd& X = s.X;
   X.resize(m, nx);
-  for (int i = 0; i < m; ++i) X.row(i) = s.Cs.row(rp[i]).head(nx);
+  for (int j = 0; j < nx; ++j) {
+    const double* src = s.Cs.col(j).data();
+    double* dst = X.col(j).data();
+    for (int i = 0; i < m; ++i) dst[i] = src[rp[i]];
+  }
   s.lu.applyRowTransform(X);
   s.kept.clear();
   s.dependent = 0;
@@ -107,7 +69,7 @@ void RiccatiSolver::eliminateRows(Stage& s) {
   solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>(), s.E);
 }
 
-// The cost part of one stage, after its row part and given Q: the reduced Hessian on the free directions, its
+// The cost part of one stage, after its row part and given Qp: the reduced Hessian on the free directions, its
 // factor, the cost-to-go P. Adds the stage's inertia (rows and dynamics first). False on an indefinite reduced
 // Hessian (unless full_inertia).
 bool RiccatiSolver::eliminateCost(Stage& s) {
@@ -118,7 +80,6 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
 
   // Reduced Hessian Qh = T' Qp T with T = [I; E]: Qp_WW + E' F + F' E, F = Qp_BW + 1/2 Qp_BB E (lower
   // triangle only, then mirrored).
-  permuteSymmetric(s.Q, s.perm, s.Qp);
   s.F = s.Qp.block(w, 0, r, w);
   s.F.noalias() += 0.5 * s.Qp.bottomRightCorner(r, r) * s.E;
   s.Qh = s.Qp.topLeftCorner(w, w);
@@ -179,26 +140,28 @@ void RiccatiSolver::stageRows(const std::vector<StageQp>& qp, int k) {
   s.Cs.resize(s.m, n);
   s.Cs.topRows(s.m_own) = d.C;
   if (next) {
-    sparseDynamics(d.A, d.B, next->nx, s.Msp);
+    sparseColumns(d.A, d.B, next->nx, s.Msp);
     if (npend > 0) denseTimesSparse(next->Gamma, s.Msp, s.Cs.bottomRows(npend), false);
   }
   eliminateRows(s);
+  // The cost in the elimination order: H now, M' P M later (by the cost part, with M's columns in the same order:
+  // the same sums as permuting H + M' P M afterwards).
+  permuteSymmetric(d.H, s.perm, s.nx, s.Qp);
+  if (next) permuteColumns(s.Msp, s.perm, s.Mp);
 }
 
-// Cost part of stage k (after its row part and the cost part of stage k+1): Q = H + M' P_{k+1} M, then
-// eliminateCost.
+// Cost part of stage k (after its row part and the cost part of stage k+1): Qp += M' P_{k+1} M in the elimination
+// order, then eliminateCost.
 bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
   const int N = static_cast<int>(qp.size()) - 1;
   Stage& s = st_[k];
-  const StageQp& d = qp[k];
-  const int n = d.nx + d.nu;
-  s.Q = d.H;
+  const int n = qp[k].nx + qp[k].nu;
   if (k < N) {
     const Stage& next = st_[k + 1];
     s.PM.resize(next.nx, n);
-    denseTimesSparse(next.P, s.Msp, s.PM, false);
+    denseTimesSparse(next.P, s.Mp, s.PM, false);
     s.PMt = s.PM.transpose();
-    denseTimesSparse(s.PMt, s.Msp, s.Q, true);
+    denseTimesSparse(s.PMt, s.Mp, s.Qp, true);
   }
   return eliminateCost(s);
 }
@@ -254,7 +217,7 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
   v.dyn_pairs = 0;
   v.Cs = st_[0].Gamma;
   eliminateRows(v);
-  v.Q = st_[0].P;
+  permuteSymmetric(st_[0].P, v.perm, 0, v.Qp);
   if (!eliminateCost(v)) {
     failed_stage_ = N + 1;
     return Status::kWrongInertia;

@@ -18,7 +18,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseCore>
 
 #include <atomic>
 #include <functional>
@@ -27,6 +26,7 @@
 
 #include "common/worker_thread.hpp"
 
+#include "ocp_solver/block_ops.hpp"
 #include "ocp_solver/pivoted_lu.hpp"
 #include "ocp_solver/stage_qp.hpp"
 
@@ -90,12 +90,11 @@ struct RiccatiSolver::Stage {
   int nx = 0, nu = 0, m = 0, m_own = 0, rank = 0, nv = 0;
   int dependent = 0;          // rows dependent on the others (zero eigenvalues of the KKT matrix)
   int dyn_pairs = 0;          // dynamics rows into the next stage (one +1 and one -1 eigenvalue each)
-  Eigen::MatrixXd Q;          // (nx+nu)^2, the stage cost plus the pulled-back cost-to-go
   Eigen::MatrixXd Cs;         // stacked rows (own, then pending of the next stage), equilibrated
   Eigen::VectorXd row_scale;  // Cs = diag(row_scale) * [C; Gamma_next M]
   PivotedLu lu;               // of the control columns of Cs
   std::vector<int> perm;      // z order used below: [x, u_N (free directions), u_B (fixed by the rows)]
-  Eigen::MatrixXd Qp;         // Q in that order
+  Eigen::MatrixXd Qp;         // the stage cost plus the pulled-back cost-to-go (H + M' P M), in that order
   Eigen::MatrixXd E;          // u_B = E [x; u_N] + e
   Eigen::MatrixXd Qh;         // reduced Hessian on [x; u_N]
   Eigen::LLT<Eigen::MatrixXd> llt;                          // of its u_N block
@@ -107,7 +106,8 @@ struct RiccatiSolver::Stage {
   std::vector<int> kept;      // their positions among the dependent rows
   // workspace
   Eigen::MatrixXd PM, PMt, X, F;
-  Eigen::SparseMatrix<double> Msp;
+  SparseColumns Msp;          // the dynamics M = [A B] (exact zeros dropped)
+  SparseColumns Mp;           // its columns in the order perm
   // vectors of the last solve
   Eigen::VectorXd q, qp, cs, e, qh, kff, p, gamma;
   Eigen::VectorXd zp, g, eta_t;

@@ -1,0 +1,38 @@
+#pragma once
+// Small dense and sparse block operations of the Riccati recursion (riccati.cpp), written as column sweeps over
+// column-major storage. Each one computes every entry with the same operations in the same order as the plain
+// (row-wise or Eigen) formulation it replaces, so the factors are bit-identical to it.
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace centaur::ocp_solver {
+
+/// A sparse matrix by columns (compressed sparse columns), its storage reused between fills.
+struct SparseColumns {
+  int rows = 0, cols = 0;
+  std::vector<int> start;  ///< column j holds entries start[j] .. start[j+1]-1
+  std::vector<int> row;
+  std::vector<double> value;
+};
+
+/// out = [A B] (A and B with `rows` rows), exact zeros dropped, each column's entries in row order.
+void sparseColumns(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows, SparseColumns& out);
+/// out.col(j) = S.col(perm[j]).
+void permuteColumns(const SparseColumns& S, const std::vector<int>& perm, SparseColumns& out);
+/// out(i, j) = in(perm[i], perm[j]); the first `identity_head` entries of perm must be 0, 1, 2, ...
+void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, int identity_head, Eigen::MatrixXd& out);
+/// Scale each row of `a` to largest |entry| 1 (rows of zeros, and rows with a NaN, unscaled); scale[i] = the factor.
+void equilibrateRows(Eigen::MatrixXd& a, Eigen::VectorXd& scale);
+
+/// out = D S (add: out += D S) for a dense D and a sparse S: out.col(j) += S(k, j) D.col(k) over the nonzeros of
+/// column j in row order (the sums of Eigen's dense-times-sparse product, vectorized over the rows).
+template <class Out>
+void denseTimesSparse(const Eigen::MatrixXd& D, const SparseColumns& S, Out&& out, bool add) {
+  for (int j = 0; j < S.cols; ++j) {
+    if (!add) out.col(j).setZero();
+    for (int p = S.start[j]; p < S.start[j + 1]; ++p) out.col(j) += S.value[p] * D.col(S.row[p]);
+  }
+}
+
+}  // namespace centaur::ocp_solver
