@@ -124,7 +124,8 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
 }
 
 // Row part of stage k: its dimensions, the stacked rows [C; Gamma_{k+1} M] and the sparse dynamics M = [A B]
-// (continuity Jacobians are mostly identity and diagonal blocks), then eliminateRows.
+// (continuity Jacobians are mostly identity and diagonal blocks), then eliminateRows, and M with its columns in the
+// elimination order for the cost part.
 void RiccatiSolver::stageRows(const std::vector<StageQp>& qp, int k) {
   const int N = static_cast<int>(qp.size()) - 1;
   Stage& s = st_[k];
@@ -144,18 +145,16 @@ void RiccatiSolver::stageRows(const std::vector<StageQp>& qp, int k) {
     if (npend > 0) denseTimesSparse(next->Gamma, s.Msp, s.Cs.bottomRows(npend), false);
   }
   eliminateRows(s);
-  // The cost in the elimination order: H now, M' P M later (by the cost part, with M's columns in the same order:
-  // the same sums as permuting H + M' P M afterwards).
-  permuteSymmetric(d.H, s.perm, s.nx, s.Qp);
   if (next) permuteColumns(s.Msp, s.perm, s.Mp);
 }
 
-// Cost part of stage k (after its row part and the cost part of stage k+1): Qp += M' P_{k+1} M in the elimination
-// order, then eliminateCost.
+// Cost part of stage k (after its row part and the cost part of stage k+1): Qp = H + M' P_{k+1} M in the elimination
+// order (H permuted, then M's columns in the same order: the same sums as permuting H + M' P M), then eliminateCost.
 bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
   const int N = static_cast<int>(qp.size()) - 1;
   Stage& s = st_[k];
   const int n = qp[k].nx + qp[k].nu;
+  permuteSymmetric(qp[k].H, s.perm, s.nx, s.Qp);
   if (k < N) {
     const Stage& next = st_[k + 1];
     s.PM.resize(next.nx, n);
