@@ -30,32 +30,12 @@ void sparseColumns(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows,
   out.start[out.cols] = p;
 }
 
-void permuteColumns(const SparseColumns& S, const std::vector<int>& perm, SparseColumns& out) {
-  out.rows = S.rows;
-  out.cols = static_cast<int>(perm.size());
-  out.start.resize(out.cols + 1);
-  const std::size_t nnz = static_cast<std::size_t>(S.start[S.cols]);
-  if (out.row.size() < nnz) {
-    out.row.resize(nnz);
-    out.value.resize(nnz);
-  }
-  int p = 0;
-  for (int j = 0; j < out.cols; ++j) {
-    out.start[j] = p;
-    for (int q = S.start[perm[j]]; q < S.start[perm[j] + 1]; ++q, ++p) {
-      out.row[p] = S.row[q];
-      out.value[p] = S.value[q];
-    }
-  }
-  out.start[out.cols] = p;
-}
-
 void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, int identity_head, Eigen::MatrixXd& out) {
   const int n = static_cast<int>(perm.size());
   out.resize(n, n);
   for (int j = 0; j < n; ++j) {
-    const double* src = in.col(perm[j]).data();
-    double* dst = out.col(j).data();
+    const double* __restrict src = in.col(perm[j]).data();
+    double* __restrict dst = out.col(j).data();
     for (int i = 0; i < identity_head; ++i) dst[i] = src[i];
     for (int i = identity_head; i < n; ++i) dst[i] = src[perm[i]];
   }
@@ -64,14 +44,15 @@ void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, i
 void equilibrateRows(Eigen::MatrixXd& a, Eigen::VectorXd& scale) {
   const int m = static_cast<int>(a.rows()), n = static_cast<int>(a.cols());
   scale.setZero(m);
+  double* __restrict sc = scale.data();  // not aliased by the columns: the compiler keeps it out of their loads
   for (int j = 0; j < n; ++j) {
-    const double* col = a.col(j).data();
+    const double* __restrict col = a.col(j).data();
     for (int i = 0; i < m; ++i) {
       const double v = std::abs(col[i]);
-      if (v > scale[i] || v != v) scale[i] = v;  // a NaN stays (later comparisons with it are false)
+      sc[i] = (v > sc[i] || v != v) ? v : sc[i];  // a NaN stays (later comparisons with it are false)
     }
   }
-  for (int i = 0; i < m; ++i) scale[i] = scale[i] > 0.0 ? 1.0 / scale[i] : 1.0;
+  for (int i = 0; i < m; ++i) sc[i] = sc[i] > 0.0 ? 1.0 / sc[i] : 1.0;
   for (int j = 0; j < n; ++j) a.col(j).array() *= scale.array();
 }
 

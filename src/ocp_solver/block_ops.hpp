@@ -18,20 +18,21 @@ struct SparseColumns {
 
 /// out = [A B] (A and B with `rows` rows), exact zeros dropped, each column's entries in row order.
 void sparseColumns(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows, SparseColumns& out);
-/// out.col(j) = S.col(perm[j]).
-void permuteColumns(const SparseColumns& S, const std::vector<int>& perm, SparseColumns& out);
 /// out(i, j) = in(perm[i], perm[j]); the first `identity_head` entries of perm must be 0, 1, 2, ...
 void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, int identity_head, Eigen::MatrixXd& out);
 /// Scale each row of `a` to largest |entry| 1 (rows of zeros, and rows with a NaN, unscaled); scale[i] = the factor.
 void equilibrateRows(Eigen::MatrixXd& a, Eigen::VectorXd& scale);
 
 /// out = D S (add: out += D S) for a dense D and a sparse S: out.col(j) += S(k, j) D.col(k) over the nonzeros of
-/// column j in row order (the sums of Eigen's dense-times-sparse product, vectorized over the rows).
+/// column j in row order (the sums of Eigen's dense-times-sparse product, vectorized over the rows). With `perm`,
+/// S's columns are taken in that order (column j of the product from column perm[j] of S).
 template <class Out>
-void denseTimesSparse(const Eigen::MatrixXd& D, const SparseColumns& S, Out&& out, bool add) {
+void denseTimesSparse(const Eigen::MatrixXd& D, const SparseColumns& S, Out&& out, bool add,
+                      const std::vector<int>* perm = nullptr) {
   for (int j = 0; j < S.cols; ++j) {
+    const int c = perm ? (*perm)[j] : j;
     if (!add) out.col(j).setZero();
-    for (int p = S.start[j]; p < S.start[j + 1]; ++p) out.col(j) += S.value[p] * D.col(S.row[p]);
+    for (int p = S.start[c]; p < S.start[c + 1]; ++p) out.col(j) += S.value[p] * D.col(S.row[p]);
   }
 }
 

@@ -124,8 +124,7 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
 }
 
 // Row part of stage k: its dimensions, the stacked rows [C; Gamma_{k+1} M] and the sparse dynamics M = [A B]
-// (continuity Jacobians are mostly identity and diagonal blocks), then eliminateRows, and M with its columns in the
-// elimination order for the cost part.
+// (continuity Jacobians are mostly identity and diagonal blocks), then eliminateRows.
 void RiccatiSolver::stageRows(const std::vector<StageQp>& qp, int k) {
   const int N = static_cast<int>(qp.size()) - 1;
   Stage& s = st_[k];
@@ -145,11 +144,11 @@ void RiccatiSolver::stageRows(const std::vector<StageQp>& qp, int k) {
     if (npend > 0) denseTimesSparse(next->Gamma, s.Msp, s.Cs.bottomRows(npend), false);
   }
   eliminateRows(s);
-  if (next) permuteColumns(s.Msp, s.perm, s.Mp);
 }
 
 // Cost part of stage k (after its row part and the cost part of stage k+1): Qp = H + M' P_{k+1} M in the elimination
-// order (H permuted, then M's columns in the same order: the same sums as permuting H + M' P M), then eliminateCost.
+// order (H permuted, then M's columns taken in the same order: the same sums as permuting H + M' P M), then
+// eliminateCost.
 bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
   const int N = static_cast<int>(qp.size()) - 1;
   Stage& s = st_[k];
@@ -158,9 +157,9 @@ bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
   if (k < N) {
     const Stage& next = st_[k + 1];
     s.PM.resize(next.nx, n);
-    denseTimesSparse(next.P, s.Mp, s.PM, false);
+    denseTimesSparse(next.P, s.Msp, s.PM, false, &s.perm);
     s.PMt = s.PM.transpose();
-    denseTimesSparse(s.PMt, s.Mp, s.Qp, true);
+    denseTimesSparse(s.PMt, s.Msp, s.Qp, true, &s.perm);
   }
   return eliminateCost(s);
 }

@@ -107,7 +107,6 @@ struct RiccatiSolver::Stage {
   // workspace
   Eigen::MatrixXd PM, PMt, X, F;
   SparseColumns Msp;          // the dynamics M = [A B] (exact zeros dropped)
-  SparseColumns Mp;           // its columns in the order perm
   // vectors of the last solve
   Eigen::VectorXd q, qp, cs, e, qh, kff, p, gamma;
   Eigen::VectorXd zp, g, eta_t;
