@@ -52,12 +52,14 @@ std::vector<StageQp> plannerSized(int nx) {
   return qp;
 }
 
+// Args: the state size; 1 = the row parts on a second thread ahead of the cost parts (RiccatiSolver::setParallel).
 void BM_RiccatiFactor(benchmark::State& state) {
   const auto qp = plannerSized(static_cast<int>(state.range(0)));
   RiccatiSolver solver;
+  solver.setParallel(state.range(1) == 1);
   for (auto _ : state) benchmark::DoNotOptimize(solver.factor(qp));
 }
-BENCHMARK(BM_RiccatiFactor)->Arg(37)->Arg(55)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RiccatiFactor)->Args({37, 0})->Args({55, 0})->Args({55, 1})->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 void BM_RiccatiSolve(benchmark::State& state) {
   const auto qp = plannerSized(static_cast<int>(state.range(0)));
