@@ -10,6 +10,11 @@
 // initial state x_0 is eliminated the same way (it is a decision variable). Forward, the states, controls and
 // every multiplier are recovered.
 //
+// Each stage has a row part (stacking, equilibrating and rank-splitting the rows, the pending rows for stage k-1)
+// and a cost part (the pull-back, the reduced Hessian, P_k). The row parts read no cost, only the pending rows of
+// the next stage, so they form a chain of their own, which setParallel runs on a second thread ahead of the cost
+// parts.
+//
 // Inertia (Sylvester's law on the block elimination): every eliminated row pairs with one control direction
 // (+1, -1), every dynamics row with one state (+1, -1), and the reduced Hessians add their own inertia. The KKT
 // matrix has the inertia an interior-point method needs, (n, m, 0), exactly when every reduced Hessian is
