@@ -41,6 +41,16 @@ void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, i
   }
 }
 
+void gatherRows(const Eigen::MatrixXd& in, const std::vector<int>& rows, int cols, Eigen::MatrixXd& out) {
+  const int m = static_cast<int>(rows.size());
+  out.resize(m, cols);
+  for (int j = 0; j < cols; ++j) {
+    const double* __restrict src = in.col(j).data();
+    double* __restrict dst = out.col(j).data();
+    for (int i = 0; i < m; ++i) dst[i] = src[rows[i]];
+  }
+}
+
 void equilibrateRows(Eigen::MatrixXd& a, Eigen::VectorXd& scale) {
   const int m = static_cast<int>(a.rows()), n = static_cast<int>(a.cols());
   scale.setZero(m);

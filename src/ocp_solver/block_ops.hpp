@@ -20,6 +20,8 @@ struct SparseColumns {
 void sparseColumns(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows, SparseColumns& out);
 /// out(i, j) = in(perm[i], perm[j]); the first `identity_head` entries of perm must be 0, 1, 2, ...
 void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, int identity_head, Eigen::MatrixXd& out);
+/// out = the first `cols` columns of `in`, rows in the order `rows` (out(i, j) = in(rows[i], j)).
+void gatherRows(const Eigen::MatrixXd& in, const std::vector<int>& rows, int cols, Eigen::MatrixXd& out);
 /// Scale each row of `a` to largest |entry| 1 (rows of zeros, and rows with a NaN, unscaled); scale[i] = the factor.
 void equilibrateRows(Eigen::MatrixXd& a, Eigen::VectorXd& scale);
 

@@ -43,12 +43,7 @@ void RiccatiSolver::eliminateRows(Stage& s) {
   // State part of the rows, in pivot order, with the row transformation applied: the dependent rows become
   // rows on x alone (pending) or vanish (dependent rows of the whole KKT matrix: zero eigenvalues).
   Eigen::MatrixXd& X = s.X;
-  X.resize(m, nx);
-  for (int j = 0; j < nx; ++j) {
-    const double* src = s.Cs.col(j).data();
-    double* dst = X.col(j).data();
-    for (int i = 0; i < m; ++i) dst[i] = src[rp[i]];
-  }
+  gatherRows(s.Cs, rp, nx, X);
   s.lu.applyRowTransform(X);
   s.kept.clear();
   s.dependent = 0;
