@@ -202,6 +202,28 @@ void BM_StageKktSolve(benchmark::State& state) {
 }
 BENCHMARK(BM_StageKktSolve)->Unit(benchmark::kMicrosecond);
 
+// One direction of the adaptive barrier as the interior point computes it: a factorization, then the affine and the
+// centring solve. 0: one after the other; 1: solveTwo, both in one pass over the factors (both with the pipelined
+// factorization, so that the solves find the factors where the planner's do).
+void BM_StageKktFactorAndTwoSolves(benchmark::State& state) {
+  static KktPoint k;
+  auto s = k.solver();
+  s.setPipelined(true);
+  const Eigen::VectorXd rx2 = 0.5 * k.rx, rc2 = k.rc.reverse();
+  Eigen::VectorXd x1, y1, x2, y2;
+  for (auto _ : state) {
+    s.factor(k.hess.data(), k.jac.data(), k.dx, k.dc);
+    if (state.range(0) == 1) {
+      s.solveTwo({k.rx, k.rc, x1, y1}, {rx2, rc2, x2, y2});
+    } else {
+      s.solve(k.rx, k.rc, x1, y1);
+      s.solve(rx2, rc2, x2, y2);
+    }
+    benchmark::DoNotOptimize(x2.data());
+  }
+}
+BENCHMARK(BM_StageKktFactorAndTwoSolves)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
 // One foot-dynamics element (25 inputs, 9 outputs, 13 nonlinear): the largest element of the OCP.
 struct FootPoint {
   FootDynamicsElement e{model::templatePreset("centauro"), 0, 1000.0};

@@ -154,17 +154,17 @@ double Ipm::barrierObjective(double f, const Vec& x, const Vec& s) const {
   return phi;
 }
 
-void Ipm::barrierGradient(Vec& gx, Vec& gs) const {
+void Ipm::barrierGradient(double mu, Vec& gx, Vec& gs) const {
   gx = grad_;
   for (int i = 0; i < n_; ++i) {
     if (fixed_[i]) gx[i] = 0.0;
-    if (has_xl_[i]) gx[i] -= mu_ / (x_[i] - xl_[i]) - (has_xu_[i] ? 0.0 : kKappaD * mu_);
-    if (has_xu_[i]) gx[i] += mu_ / (xu_[i] - x_[i]) - (has_xl_[i] ? 0.0 : kKappaD * mu_);
+    if (has_xl_[i]) gx[i] -= mu / (x_[i] - xl_[i]) - (has_xu_[i] ? 0.0 : kKappaD * mu);
+    if (has_xu_[i]) gx[i] += mu / (xu_[i] - x_[i]) - (has_xl_[i] ? 0.0 : kKappaD * mu);
   }
   gs.setZero(m_);
   for (int r = 0; r < m_; ++r) {
-    if (has_gl_[r]) gs[r] -= mu_ / (s_[r] - gl_[r]) - (has_gu_[r] ? 0.0 : kKappaD * mu_);
-    if (has_gu_[r]) gs[r] += mu_ / (gu_[r] - s_[r]) - (has_gl_[r] ? 0.0 : kKappaD * mu_);
+    if (has_gl_[r]) gs[r] -= mu / (s_[r] - gl_[r]) - (has_gu_[r] ? 0.0 : kKappaD * mu);
+    if (has_gu_[r]) gs[r] += mu / (gu_[r] - s_[r]) - (has_gl_[r] ? 0.0 : kKappaD * mu);
   }
 }
 

@@ -187,12 +187,7 @@ double Ipm::qualityFunction(const Direction& a, const Direction& c, double sigma
 
 bool Ipm::adaptiveDirection() {
   const double avg = averageComplementarity();
-  const double mu_saved = mu_;
-  mu_ = 0.0;
-  solveAndRecover(rp_, aff_);
-  mu_ = avg;
-  solveAndRecover(rp_, cen_);
-  mu_ = mu_saved;
+  solveAffineAndCentring(avg);
   if (!aff_.x.allFinite() || !cen_.x.allFinite()) return false;
   // Minimize the quality function over sigma in [sigma_lo, sigma_up]: the side of sigma = 1 where it decreases
   // is chosen first (from q(1) and q(1 - eps)), then a golden-section search in sigma on that side, stopped when

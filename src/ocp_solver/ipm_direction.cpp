@@ -69,46 +69,42 @@ bool Ipm::factorWithCorrection() {
 }
 
 // Right-hand side of the reduced system for the primal residual `rp` (the current one, or the accumulated
-// one of a second-order correction).
-void Ipm::assembleRhs(const Vec& rp, Direction& d) {
-  (void)d;
+// one of a second-order correction) and the barrier parameter mu.
+void Ipm::assembleRhs(const Vec& rp, double mu, StepRhs& rhs) const {
   Vec gx, gs;
-  barrierGradient(gx, gs);
+  barrierGradient(mu, gx, gs);
   const SparsePattern& p = nlp_.pattern();
-  rx_ = -gx;
-  for (std::size_t t = 0; t < p.jac_rows.size(); ++t) rx_[p.jac_cols[t]] -= jac_[t] * y_[p.jac_rows[t]];
+  rhs.mu = mu;
+  rhs.rx = -gx;
+  for (std::size_t t = 0; t < p.jac_rows.size(); ++t) rhs.rx[p.jac_cols[t]] -= jac_[t] * y_[p.jac_rows[t]];
   for (int i = 0; i < n_; ++i)
-    if (fixed_[i]) rx_[i] = 0.0;
-  rho_s_.setZero(m_);
-  rc_.resize(m_);
+    if (fixed_[i]) rhs.rx[i] = 0.0;
+  rhs.rho_s.setZero(m_);
+  rhs.rc.resize(m_);
   for (int r = 0; r < m_; ++r) {
-    rc_[r] = -rp[r];
+    rhs.rc[r] = -rp[r];
     if (ineq_[r]) {
-      rho_s_[r] = y_[r] - gs[r];
-      rc_[r] += rho_s_[r] / (sigma_s_[r] + delta_w_);
+      rhs.rho_s[r] = y_[r] - gs[r];
+      rhs.rc[r] += rhs.rho_s[r] / (sigma_s_[r] + delta_w_);
     }
   }
 }
 
-void Ipm::solveAndRecover(const Vec& rp, Direction& d) {
-  assembleRhs(rp, d);
-  const auto t = std::chrono::steady_clock::now();
-  kkt_.solve(rx_, rc_, d.x, d.y);
-  stats_.time_solve += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-  ++stats_.solves;
+void Ipm::recover(const StepRhs& rhs, Direction& d) const {
+  const double mu = rhs.mu;
   d.s.setZero(m_);
   d.vl.setZero(m_);
   d.vu.setZero(m_);
   for (int r = 0; r < m_; ++r) {
     if (!ineq_[r]) continue;
-    d.s[r] = (rho_s_[r] + d.y[r]) / (sigma_s_[r] + delta_w_);
+    d.s[r] = (rhs.rho_s[r] + d.y[r]) / (sigma_s_[r] + delta_w_);
     if (has_gl_[r]) {
       const double sl = s_[r] - gl_[r];
-      d.vl[r] = mu_ / sl - vl_[r] - vl_[r] / sl * d.s[r];
+      d.vl[r] = mu / sl - vl_[r] - vl_[r] / sl * d.s[r];
     }
     if (has_gu_[r]) {
       const double su = gu_[r] - s_[r];
-      d.vu[r] = mu_ / su - vu_[r] + vu_[r] / su * d.s[r];
+      d.vu[r] = mu / su - vu_[r] + vu_[r] / su * d.s[r];
     }
   }
   d.zl.setZero(n_);
@@ -116,13 +112,33 @@ void Ipm::solveAndRecover(const Vec& rp, Direction& d) {
   for (int i = 0; i < n_; ++i) {
     if (has_xl_[i]) {
       const double sl = x_[i] - xl_[i];
-      d.zl[i] = mu_ / sl - zl_[i] - zl_[i] / sl * d.x[i];
+      d.zl[i] = mu / sl - zl_[i] - zl_[i] / sl * d.x[i];
     }
     if (has_xu_[i]) {
       const double su = xu_[i] - x_[i];
-      d.zu[i] = mu_ / su - zu_[i] + zu_[i] / su * d.x[i];
+      d.zu[i] = mu / su - zu_[i] + zu_[i] / su * d.x[i];
     }
   }
+}
+
+void Ipm::solveAndRecover(const Vec& rp, Direction& d) {
+  assembleRhs(rp, mu_, rhs_);
+  const auto t = std::chrono::steady_clock::now();
+  kkt_.solve(rhs_.rx, rhs_.rc, d.x, d.y);
+  stats_.time_solve += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  ++stats_.solves;
+  recover(rhs_, d);
+}
+
+void Ipm::solveAffineAndCentring(double mu_cen) {
+  assembleRhs(rp_, 0.0, rhs_);
+  assembleRhs(rp_, mu_cen, rhs_cen_);
+  const auto t = std::chrono::steady_clock::now();
+  kkt_.solveTwo({rhs_.rx, rhs_.rc, aff_.x, aff_.y}, {rhs_cen_.rx, rhs_cen_.rc, cen_.x, cen_.y});
+  stats_.time_solve += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  stats_.solves += 2;
+  recover(rhs_, aff_);
+  recover(rhs_cen_, cen_);
 }
 
 bool Ipm::computeDirection() {

@@ -102,7 +102,7 @@ bool Ipm::secondOrderCorrection(double alpha, double gpd, double theta0, double 
 
 bool Ipm::lineSearch() {
   Vec gx, gs;
-  barrierGradient(gx, gs);
+  barrierGradient(mu_, gx, gs);
   const double gpd = gx.dot(d_.x) + gs.dot(d_.s);
   const double theta0 = theta(g_, s_), phi0 = barrierObjective(f_, x_, s_);
   const double a_max = std::min(maxStep(x_, d_.x, xl_, xu_, has_xl_, has_xu_, tau_),

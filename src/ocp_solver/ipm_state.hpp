@@ -13,6 +13,12 @@ struct Direction {
   Vec x, s, y, zl, zu, vl, vu;
 };
 
+/// The right-hand side of the reduced system for one barrier parameter, and the slack part it eliminated.
+struct StepRhs {
+  double mu = 0.0;
+  Vec rx, rc, rho_s;
+};
+
 class Ipm {
  public:
   Ipm(Nlp& nlp, KktSolver& kkt, const IpmOptions& opt, const WarmStart* warm);
@@ -33,7 +39,7 @@ class Ipm {
   void primalResidual(const Vec& g, const Vec& s, Vec& rp) const;
   double theta(const Vec& g, const Vec& s) const;
   double barrierObjective(double f, const Vec& x, const Vec& s) const;
-  void barrierGradient(Vec& gx, Vec& gs) const;
+  void barrierGradient(double mu, Vec& gx, Vec& gs) const;
   double optimalityError(double mu, bool unscaled_check, double* dual = nullptr, double* primal = nullptr,
                          double* compl_out = nullptr) const;
   void safeguardMultipliers();
@@ -56,8 +62,11 @@ class Ipm {
   // direction (ipm_direction.cpp)
   bool computeDirection();
   bool factorWithCorrection();
-  void assembleRhs(const Vec& rp, Direction& d);
+  void assembleRhs(const Vec& rp, double mu, StepRhs& rhs) const;
+  void recover(const StepRhs& rhs, Direction& d) const;  // the slack and bound-multiplier steps
   void solveAndRecover(const Vec& rp, Direction& d);
+  /// The affine-scaling (mu = 0) and the centring (mu = mu_cen) steps with the same factorization, solved together.
+  void solveAffineAndCentring(double mu_cen);
   // line search (ipm_line_search.cpp)
   bool lineSearch();
   double maxStep(const Vec& v, const Vec& dv, const Vec& lo, const Vec& hi, const std::vector<char>& has_lo,
@@ -93,7 +102,8 @@ class Ipm {
 
   // direction and linear algebra
   Direction d_;
-  Vec dxdiag_, dc_, rx_, rc_, sigma_s_, rho_s_;
+  Vec dxdiag_, dc_, sigma_s_;
+  StepRhs rhs_, rhs_cen_;
   Vec extra_diag_;                   // restoration: its proximal term
   const double* hess_in_use_ = nullptr;
   double delta_w_ = 0.0, delta_w_last_ = 0.0, delta_c_ = 0.0;

@@ -30,6 +30,14 @@ enum class KktStatus {
   kSingular,       ///< the exact rows are linearly dependent
 };
 
+/// One solve: the right-hand side and where the solution goes.
+struct KktSolve {
+  const Eigen::VectorXd& rx;
+  const Eigen::VectorXd& rc;
+  Eigen::VectorXd& dx;
+  Eigen::VectorXd& dy;
+};
+
 class KktSolver {
  public:
   virtual ~KktSolver() = default;
@@ -40,6 +48,12 @@ class KktSolver {
   /// Solve with the last factorization; dx has size n (zero for fixed variables), dy size m.
   virtual void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
                      Eigen::VectorXd& dy) = 0;
+  /// Two solves with the last factorization, with the results of solve(a) then solve(b); a solver may run them
+  /// concurrently.
+  virtual void solveTwo(const KktSolve& a, const KktSolve& b) {
+    solve(a.rx, a.rc, a.dx, a.dy);
+    solve(b.rx, b.rc, b.dx, b.dy);
+  }
   /// Rows the solver keeps exact even when the caller asks for a dual regularization (d_c > 0 on an equality
   /// row), e.g. the dynamics of an OCP; empty for a solver that honours every d_c.
   virtual const std::vector<char>& alwaysExactRows() const = 0;

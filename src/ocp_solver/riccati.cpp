@@ -228,111 +228,153 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
   return inertia_.zero > 0 ? Status::kSingular : Status::kOk;
 }
 
-void RiccatiSolver::backwardVectors(const std::vector<StageQp>& qp) {
+// One step of the backward pass over the vectors: stage k (N..0, then N + 1, the initial state).
+void RiccatiSolver::backwardStage(const std::vector<StageQp>& qp, const std::vector<StageRhs>& rhs, int k,
+                                  RiccatiVectors& ws) const {
   const int N = static_cast<int>(qp.size()) - 1;
-  for (int step = 0; step <= N + 1; ++step) {
-    const int k = step <= N ? N - step : N + 1;  // stages N..0, then the initial state
-    Stage& s = st_[k];
-    const int nx = s.nx, nu = s.nu, n = nx + nu, r = s.rank, nv = s.nv, w = nx + nv;
-    if (k == N + 1) {
-      s.q = st_[0].p;
-      s.cs = st_[0].gamma;
-    } else {
-      const StageQp& d = qp[k];
-      s.q = d.h;
-      s.cs.resize(s.m);
-      s.cs.head(s.m_own) = d.c;
-      if (k < N) {
-        const Stage& nx1 = st_[k + 1];
-        Eigen::VectorXd wv = nx1.p;
-        wv.noalias() += nx1.P * d.b;
-        s.q.head(nx).noalias() += d.A.transpose() * wv;
-        s.q.tail(nu).noalias() += d.B.transpose() * wv;
-        s.cs.tail(s.m - s.m_own) = nx1.gamma;
-        s.cs.tail(s.m - s.m_own).noalias() += nx1.Gamma * d.b;
-      }
+  const Stage& s = st_[k];
+  RiccatiVectors::Stage& v = ws.st[k];
+  const int nx = s.nx, nu = s.nu, n = nx + nu, r = s.rank, nv = s.nv, w = nx + nv;
+  if (k == N + 1) {
+    v.q = ws.st[0].p;
+    v.cs = ws.st[0].gamma;
+  } else {
+    const StageQp& d = qp[k];
+    const StageRhs& dr = rhs[k];
+    v.q = dr.h;
+    v.cs.resize(s.m);
+    v.cs.head(s.m_own) = dr.c;
+    if (k < N) {
+      const Stage& nx1 = st_[k + 1];
+      const RiccatiVectors::Stage& v1 = ws.st[k + 1];
+      ws.wv = v1.p;
+      ws.wv.noalias() += nx1.P * dr.b;
+      v.q.head(nx).noalias() += d.A.transpose() * ws.wv;
+      v.q.tail(nu).noalias() += d.B.transpose() * ws.wv;
+      v.cs.tail(s.m - s.m_own) = v1.gamma;
+      v.cs.tail(s.m - s.m_own).noalias() += nx1.Gamma * dr.b;
     }
-    s.cs.array() *= s.row_scale.array();
-    Eigen::VectorXd ct(s.m);
-    for (int i = 0; i < s.m; ++i) ct[i] = s.cs[s.lu.rowPerm()[i]];
-    s.lu.applyRowTransform(ct);
-    s.gamma.resize(static_cast<int>(s.kept.size()));
-    for (std::size_t j = 0; j < s.kept.size(); ++j) s.gamma[static_cast<int>(j)] = ct[r + s.kept[j]];
-    s.e = -ct.head(r);
-    solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>(), s.e);
-    s.qp.resize(n);
-    for (int i = 0; i < n; ++i) s.qp[i] = s.q[s.perm[i]];
-    s.g = s.qp;
-    s.g.noalias() += s.Qp.rightCols(r) * s.e;
-    s.qh = s.g.head(w);
-    s.qh.noalias() += s.E.transpose() * s.g.tail(r);
-    s.kff = -s.qh.tail(nv);
-    s.solveNN(s.kff);
-    s.p = s.qh.head(nx);
-    s.p.noalias() += s.Qh.topRightCorner(nx, nv) * s.kff;
   }
+  v.cs.array() *= s.row_scale.array();
+  ws.ct.resize(s.m);
+  for (int i = 0; i < s.m; ++i) ws.ct[i] = v.cs[s.lu.rowPerm()[i]];
+  s.lu.applyRowTransform(ws.ct);
+  v.gamma.resize(static_cast<int>(s.kept.size()));
+  for (std::size_t j = 0; j < s.kept.size(); ++j) v.gamma[static_cast<int>(j)] = ws.ct[r + s.kept[j]];
+  v.e = -ws.ct.head(r);
+  solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>(), v.e);
+  v.qp.resize(n);
+  for (int i = 0; i < n; ++i) v.qp[i] = v.q[s.perm[i]];
+  v.g = v.qp;
+  v.g.noalias() += s.Qp.rightCols(r) * v.e;
+  v.qh = v.g.head(w);
+  v.qh.noalias() += s.E.transpose() * v.g.tail(r);
+  v.kff = -v.qh.tail(nv);
+  s.solveNN(v.kff);
+  v.p = v.qh.head(nx);
+  v.p.noalias() += s.Qh.topRightCorner(nx, nv) * v.kff;
 }
 
-void RiccatiSolver::stageForward(Stage& s, const Eigen::VectorXd& x, const Eigen::VectorXd& eta_pending,
-                                 Eigen::VectorXd& z, Eigen::VectorXd& eta_stacked) {
+// One stage of the forward pass: from the state ws.x and the multipliers of the rows this stage passed to the
+// previous one (ws.eta_pending), the stage's z (ws.z) and the multipliers of its stacked rows (ws.eta_stacked).
+void RiccatiSolver::stageForward(const Stage& s, RiccatiVectors::Stage& v, RiccatiVectors& ws) const {
   const int nx = s.nx, nu = s.nu, n = nx + nu, r = s.rank, nv = s.nv, w = nx + nv;
-  s.zp.resize(n);
-  s.zp.head(nx) = x;
-  Eigen::VectorXd t = s.qh.tail(nv);
-  t.noalias() += s.Qh.bottomLeftCorner(nv, nx) * x;
-  s.solveNN(t);
-  s.zp.segment(nx, nv) = -t;
-  s.zp.tail(r) = s.e;
-  s.zp.tail(r).noalias() += s.E * s.zp.head(w);
-  z.resize(n);
-  for (int i = 0; i < n; ++i) z[s.perm[i]] = s.zp[i];
+  v.zp.resize(n);
+  v.zp.head(nx) = ws.x;
+  ws.t = v.qh.tail(nv);
+  ws.t.noalias() += s.Qh.bottomLeftCorner(nv, nx) * ws.x;
+  s.solveNN(ws.t);
+  v.zp.segment(nx, nv) = -ws.t;
+  v.zp.tail(r) = v.e;
+  v.zp.tail(r).noalias() += s.E * v.zp.head(w);
+  ws.z.resize(n);
+  for (int i = 0; i < n; ++i) ws.z[s.perm[i]] = v.zp[i];
   // Multipliers of the stacked rows: the fixed control directions give the independent ones, the pending
   // rows' multipliers come from the previous stage; then back to the original rows.
-  Eigen::VectorXd gb = s.qp.tail(r);  // the gradient's u_B part: only it carries the multipliers
-  gb.noalias() += s.Qp.bottomRows(r) * s.zp;
-  s.eta_t.setZero(s.m);
-  s.eta_t.head(r) = -gb;
+  ws.gb = v.qp.tail(r);  // the gradient's u_B part: only it carries the multipliers
+  ws.gb.noalias() += s.Qp.bottomRows(r) * v.zp;
+  v.eta_t.setZero(s.m);
+  v.eta_t.head(r) = -ws.gb;
   solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().transpose(),
-                          s.eta_t.head(r));
-  for (std::size_t j = 0; j < s.kept.size(); ++j) s.eta_t[r + s.kept[j]] = eta_pending[static_cast<int>(j)];
-  s.lu.applyRowTransformTransposed(s.eta_t);
-  eta_stacked.resize(s.m);
-  for (int i = 0; i < s.m; ++i) eta_stacked[s.lu.rowPerm()[i]] = s.eta_t[i];
-  eta_stacked.array() *= s.row_scale.array();
+                          v.eta_t.head(r));
+  for (std::size_t j = 0; j < s.kept.size(); ++j) v.eta_t[r + s.kept[j]] = ws.eta_pending[static_cast<int>(j)];
+  s.lu.applyRowTransformTransposed(v.eta_t);
+  ws.eta_stacked.resize(s.m);
+  for (int i = 0; i < s.m; ++i) ws.eta_stacked[s.lu.rowPerm()[i]] = v.eta_t[i];
+  ws.eta_stacked.array() *= s.row_scale.array();
 }
 
-void RiccatiSolver::forward(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol) {
+// One step of the forward pass: the initial state (k = N + 1) first, then stages 0..N.
+void RiccatiSolver::forwardStage(const std::vector<StageQp>& qp, const std::vector<StageRhs>& rhs, int k,
+                                 std::vector<StageSolution>& sol, RiccatiVectors& ws) const {
   const int N = static_cast<int>(qp.size()) - 1;
-  sol.resize(N + 1);
-  Eigen::VectorXd x(0), z, eta_stacked, eta_pending(0);
-  stageForward(st_[N + 1], x, eta_pending, z, eta_stacked);
-  x = z;
-  eta_pending = eta_stacked;
-  for (int k = 0; k <= N; ++k) {
-    Stage& s = st_[k];
-    stageForward(s, x, eta_pending, z, eta_stacked);
-    StageSolution& o = sol[k];
-    o.x = z.head(s.nx);
-    o.u = z.tail(s.nu);
-    o.eta = eta_stacked.head(s.m_own);
-    if (k == N) {
-      o.lambda.resize(0);
-      break;
-    }
-    const Stage& nx1 = st_[k + 1];
-    eta_pending = eta_stacked.tail(s.m - s.m_own);
-    x = qp[k].b;
-    x.noalias() += qp[k].A * o.x;
-    x.noalias() += qp[k].B * o.u;
-    o.lambda = nx1.p;
-    o.lambda.noalias() += nx1.P * x;
-    o.lambda.noalias() += nx1.Gamma.transpose() * eta_pending;
+  if (k == N + 1) {
+    ws.x.resize(0);
+    ws.eta_pending.resize(0);
+    stageForward(st_[N + 1], ws.st[N + 1], ws);
+    ws.x = ws.z;
+    ws.eta_pending = ws.eta_stacked;
+    return;
   }
+  const Stage& s = st_[k];
+  stageForward(s, ws.st[k], ws);
+  StageSolution& o = sol[k];
+  o.x = ws.z.head(s.nx);
+  o.u = ws.z.tail(s.nu);
+  o.eta = ws.eta_stacked.head(s.m_own);
+  if (k == N) {
+    o.lambda.resize(0);
+    return;
+  }
+  const Stage& nx1 = st_[k + 1];
+  ws.eta_pending = ws.eta_stacked.tail(s.m - s.m_own);
+  ws.x = rhs[k].b;
+  ws.x.noalias() += qp[k].A * o.x;
+  ws.x.noalias() += qp[k].B * o.u;
+  o.lambda = ws.st[k + 1].p;
+  o.lambda.noalias() += nx1.P * ws.x;
+  o.lambda.noalias() += nx1.Gamma.transpose() * ws.eta_pending;
 }
 
 void RiccatiSolver::solve(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol) {
-  backwardVectors(qp);
-  forward(qp, sol);
+  rhs_.resize(qp.size());
+  for (std::size_t k = 0; k < qp.size(); ++k) {
+    rhs_[k].h = qp[k].h;
+    rhs_[k].b = qp[k].b;
+    rhs_[k].c = qp[k].c;
+  }
+  solve(qp, rhs_, sol, ws_);
+}
+
+void RiccatiSolver::solve(const std::vector<StageQp>& qp, const std::vector<StageRhs>& rhs,
+                          std::vector<StageSolution>& sol, RiccatiVectors& ws) const {
+  const int N = static_cast<int>(qp.size()) - 1;
+  ws.st.resize(N + 2);
+  sol.resize(N + 1);
+  for (int k = N; k >= 0; --k) backwardStage(qp, rhs, k, ws);
+  backwardStage(qp, rhs, N + 1, ws);
+  forwardStage(qp, rhs, N + 1, sol, ws);
+  for (int k = 0; k <= N; ++k) forwardStage(qp, rhs, k, sol, ws);
+}
+
+void RiccatiSolver::solveTwo(const std::vector<StageQp>& qp, const Rhs& a, const Rhs& b) const {
+  const int N = static_cast<int>(qp.size()) - 1;
+  for (const Rhs* r : {&a, &b}) {
+    r->ws.st.resize(N + 2);
+    r->sol.resize(N + 1);
+  }
+  for (int k = N; k >= 0; --k) {
+    backwardStage(qp, a.rhs, k, a.ws);
+    backwardStage(qp, b.rhs, k, b.ws);
+  }
+  backwardStage(qp, a.rhs, N + 1, a.ws);
+  backwardStage(qp, b.rhs, N + 1, b.ws);
+  forwardStage(qp, a.rhs, N + 1, a.sol, a.ws);
+  forwardStage(qp, b.rhs, N + 1, b.sol, b.ws);
+  for (int k = 0; k <= N; ++k) {
+    forwardStage(qp, a.rhs, k, a.sol, a.ws);
+    forwardStage(qp, b.rhs, k, b.sol, b.ws);
+  }
 }
 
 }  // namespace centaur::ocp_solver

@@ -37,6 +37,18 @@
 
 namespace centaur::ocp_solver {
 
+/// The vectors of one solve with a RiccatiSolver's factors: per stage the pulled-back gradient and the stage's
+/// feed-forward terms, and the forward pass's scratch. Kept between solves so that they do not allocate; solves
+/// that run concurrently on the same factors need one each.
+struct RiccatiVectors {
+  struct Stage {
+    Eigen::VectorXd q, qp, cs, e, qh, kff, p, gamma;
+    Eigen::VectorXd zp, g, eta_t;
+  };
+  std::vector<Stage> st;  // stages 0..N, then the initial state
+  Eigen::VectorXd wv, ct, t, gb, x, z, eta_stacked, eta_pending;
+};
+
 class RiccatiSolver {
  public:
   struct Options {
@@ -60,6 +72,19 @@ class RiccatiSolver {
   /// Solve with the right-hand sides (h, b, c) of `qp` (same matrices as the last factor()). Allowed after
   /// kOk or kSingular (dependent rows get zero multipliers) and after kWrongInertia with full_inertia.
   void solve(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol);
+  /// The same with the right-hand sides `rhs` (the vectors of `qp` are not read) and the caller's vectors. It
+  /// reads the factors only, so solves with different `ws` may run concurrently.
+  void solve(const std::vector<StageQp>& qp, const std::vector<StageRhs>& rhs, std::vector<StageSolution>& sol,
+             RiccatiVectors& ws) const;
+  /// One solve's right-hand sides, solution and vectors.
+  struct Rhs {
+    const std::vector<StageRhs>& rhs;
+    std::vector<StageSolution>& sol;
+    RiccatiVectors& ws;
+  };
+  /// Two solves in one pass over the factors, stage by stage one after the other: each stage's factors are read
+  /// from memory once for both (the solves are bound by reading the factors). The results are those of solve().
+  void solveTwo(const std::vector<StageQp>& qp, const Rhs& a, const Rhs& b) const;
 
   const Inertia& inertia() const { return inertia_; }
   /// The stage whose reduced Hessian was found indefinite first (-1: none; N + 1: the initial state).
@@ -77,10 +102,11 @@ class RiccatiSolver {
   bool stageCost(const std::vector<StageQp>& qp, int k);
   void eliminateRows(Stage& s);
   bool eliminateCost(Stage& s);
-  void backwardVectors(const std::vector<StageQp>& qp);
-  void forward(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol);
-  void stageForward(Stage& s, const Eigen::VectorXd& x, const Eigen::VectorXd& eta_pending, Eigen::VectorXd& z,
-                    Eigen::VectorXd& eta_stacked);
+  void backwardStage(const std::vector<StageQp>& qp, const std::vector<StageRhs>& rhs, int k,
+                     RiccatiVectors& ws) const;
+  void forwardStage(const std::vector<StageQp>& qp, const std::vector<StageRhs>& rhs, int k,
+                    std::vector<StageSolution>& sol, RiccatiVectors& ws) const;
+  void stageForward(const Stage& s, RiccatiVectors::Stage& v, RiccatiVectors& ws) const;
 
   Options opt_;
   std::vector<Stage> st_;  // stages 0..N, then the initial-state elimination at index N + 1
@@ -88,6 +114,8 @@ class RiccatiSolver {
   int failed_stage_ = -1;
   bool factored_ = false;
   std::unique_ptr<Parallel> par_;
+  std::vector<StageRhs> rhs_;  // solve(qp, sol): the right-hand sides copied from qp
+  RiccatiVectors ws_;          // and its vectors
 };
 
 /// The per-stage factors (public only so that the implementation file can define it).
@@ -112,9 +140,6 @@ struct RiccatiSolver::Stage {
   // workspace
   Eigen::MatrixXd PM, PMt, X, F;
   SparseColumns Msp;          // the dynamics M = [A B] (exact zeros dropped)
-  // vectors of the last solve
-  Eigen::VectorXd q, qp, cs, e, qh, kff, p, gamma;
-  Eigen::VectorXd zp, g, eta_t;
   // helpers
   void solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const;  // Qh_NN^{-1} rhs
 };

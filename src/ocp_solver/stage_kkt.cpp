@@ -148,8 +148,9 @@ void StageKktSolver::analyzeCarried(const SparsePattern& p) {
 }
 
 // A row of stage k as a dense vector over z_k; a coupled row gets the dynamics substituted for x_{k+1}
-// (rhs_shift: its constant J_next b, which the caller adds to the row's right-hand side).
-void StageKktSolver::rowVector(const Row& row, const double* jac, Eigen::VectorXd& a, double& rhs_shift) const {
+// (rhs_shift: its constant J_next b, which the caller adds to the row's right-hand side; computed when b is given).
+void StageKktSolver::rowVector(const Row& row, const double* jac, const Eigen::VectorXd* b, Eigen::VectorXd& a,
+                               double& rhs_shift) const {
   const StageQp& q = qp_[row.stage];
   a.setZero(q.nx + q.nu);
   rhs_shift = 0.0;
@@ -160,7 +161,7 @@ void StageKktSolver::rowVector(const Row& row, const double* jac, Eigen::VectorX
     } else {
       a.head(q.nx).noalias() += v * q.A.row(e.col).transpose();
       a.tail(q.nu).noalias() += v * q.B.row(e.col).transpose();
-      rhs_shift += v * q.b[e.col];
+      if (b) rhs_shift += v * (*b)[e.col];
     }
   }
 }
@@ -209,7 +210,7 @@ void StageKktSolver::fillStage(int k) {
   int i = 0;
   for (int c : fixed_cols_[k]) q.C(i++, c) = 1.0;
   for (int r : exact_rows_[k]) {
-    rowVector(rows_[r], jac_, a, shift);
+    rowVector(rows_[r], jac_, nullptr, a, shift);
     q.C.row(i++) = a.transpose();
   }
   for (int r : penalty_rows_[k]) {
@@ -219,7 +220,7 @@ void StageKktSolver::fillStage(int k) {
       for (const Entry& e1 : row.entries)
         for (const Entry& e2 : row.entries) q.H(e1.col, e2.col) += w * jac_[e1.slot] * jac_[e2.slot];
     } else {  // the row after substituting the dynamics: sparse too (a few states and controls)
-      rowVector(row, jac_, a, shift);
+      rowVector(row, jac_, nullptr, a, shift);
       nz_.clear();
       for (int j = 0; j < a.size(); ++j)
         if (a[j] != 0.0) nz_.push_back(j);
@@ -235,6 +236,7 @@ KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Ei
   hess_ = hess;
   dx_diag_ = dx;
   dc_ = dc;
+  kmax_ = -1.0;
   RiccatiSolver::Status st;
   if (riccati_.parallel()) {
     // The second thread fills each stage just before its row part (every stage, also after an early stop: solve()
@@ -251,65 +253,103 @@ KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Ei
   }
 }
 
+// The largest entry of the matrix (the scale of the relative residual), once per factorization.
+double StageKktSolver::largestEntry() const {
+  double kmax = 0.0;
+  for (std::size_t t = 0; t < pattern_.hess_rows.size(); ++t) kmax = std::max(kmax, std::abs(hess_[t]));
+  for (int v = 0; v < n_; ++v) kmax = std::max(kmax, std::abs(dx_diag_[v]));
+  for (std::size_t t = 0; t < pattern_.jac_rows.size(); ++t) kmax = std::max(kmax, std::abs(jac_[t]));
+  return kmax;
+}
+
 double StageKktSolver::residual(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, const Eigen::VectorXd& dx,
                                 const Eigen::VectorXd& dy, Eigen::VectorXd& res_x, Eigen::VectorXd& res_c) const {
   res_x = rx;
   res_c = rc;
-  double kmax = 0.0;
   for (std::size_t t = 0; t < pattern_.hess_rows.size(); ++t) {
     const int a = pattern_.hess_rows[t], b = pattern_.hess_cols[t];
     res_x[a] -= hess_[t] * dx[b];
     if (a != b) res_x[b] -= hess_[t] * dx[a];
-    kmax = std::max(kmax, std::abs(hess_[t]));
   }
-  for (int v = 0; v < n_; ++v) {
-    res_x[v] -= dx_diag_[v] * dx[v];
-    kmax = std::max(kmax, std::abs(dx_diag_[v]));
-  }
+  for (int v = 0; v < n_; ++v) res_x[v] -= dx_diag_[v] * dx[v];
   for (std::size_t t = 0; t < pattern_.jac_rows.size(); ++t) {
     const int r = pattern_.jac_rows[t], c = pattern_.jac_cols[t];
     res_x[c] -= jac_[t] * dy[r];
     res_c[r] -= jac_[t] * dx[c];
-    kmax = std::max(kmax, std::abs(jac_[t]));
   }
   for (int r = 0; r < m_; ++r)
     if (!dynamics_row_[r]) res_c[r] += dc_[r] * dy[r];
   for (int v = 0; v < n_; ++v)
     if (fixed_[v]) res_x[v] = 0.0;
   const double sol = std::max(dx.cwiseAbs().maxCoeff(), dy.size() ? dy.cwiseAbs().maxCoeff() : 0.0);
-  return std::max({rx.cwiseAbs().maxCoeff(), rc.size() ? rc.cwiseAbs().maxCoeff() : 0.0, kmax * sol, 1e-300});
+  return std::max({rx.cwiseAbs().maxCoeff(), rc.size() ? rc.cwiseAbs().maxCoeff() : 0.0, kmax_ * sol, 1e-300});
 }
 
 void StageKktSolver::solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
                            Eigen::VectorXd& dy) {
-  solveOnce(rx, rc, dx, dy);
+  if (kmax_ < 0.0) kmax_ = largestEntry();
+  solveWith(work_[0], rx, rc, dx, dy);
+  last_residual_ = work_[0].residual;
+}
+
+void StageKktSolver::solveTwo(const KktSolve& a, const KktSolve& b) {
+  if (kmax_ < 0.0) kmax_ = largestEntry();
+  SolveWork &wa = work_[0], &wb = work_[1];
+  stageRhs(wa, a.rx, a.rc);
+  stageRhs(wb, b.rx, b.rc);
+  riccati_.solveTwo(qp_, {wa.rhs, wa.sol, wa.vec}, {wb.rhs, wb.sol, wb.vec});
+  recoverStep(wa, a.rc, a.dx, a.dy);
+  recoverStep(wb, b.rc, b.dx, b.dy);
+  refine(wa, a.rx, a.rc, a.dx, a.dy);
+  refine(wb, b.rx, b.rc, b.dx, b.dy);
+  last_residual_ = wb.residual;
+}
+
+void StageKktSolver::solveWith(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc,
+                               Eigen::VectorXd& dx, Eigen::VectorXd& dy) const {
+  solveOnce(w, rx, rc, dx, dy);
+  refine(w, rx, rc, dx, dy);
+}
+
+void StageKktSolver::refine(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
+                            Eigen::VectorXd& dy) const {
   for (int it = 0;; ++it) {
-    const double scale = residual(rx, rc, dx, dy, res_x_, res_c_);
-    const double r = std::max(res_x_.cwiseAbs().maxCoeff(), m_ ? res_c_.cwiseAbs().maxCoeff() : 0.0);
-    last_residual_ = r / scale;
-    if (last_residual_ <= 1e-12 || it >= max_refinement) break;
-    solveOnce(res_x_, res_c_, ddx_, ddy_);
-    dx += ddx_;
-    dy += ddy_;
+    const double scale = residual(rx, rc, dx, dy, w.res_x, w.res_c);
+    const double r = std::max(w.res_x.cwiseAbs().maxCoeff(), m_ ? w.res_c.cwiseAbs().maxCoeff() : 0.0);
+    w.residual = r / scale;
+    if (w.residual <= 1e-12 || it >= max_refinement) break;
+    solveOnce(w, w.res_x, w.res_c, w.ddx, w.ddy);
+    dx += w.ddx;
+    dy += w.ddy;
   }
 }
 
-void StageKktSolver::solveOnce(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
-                               Eigen::VectorXd& dy) {
+void StageKktSolver::solveOnce(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc,
+                               Eigen::VectorXd& dx, Eigen::VectorXd& dy) const {
+  stageRhs(w, rx, rc);
+  riccati_.solve(qp_, w.rhs, w.sol, w.vec);
+  recoverStep(w, rc, dx, dy);
+}
+
+// The stage right-hand sides of the system with right-hand side (rx, rc).
+void StageKktSolver::stageRhs(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc) const {
+  w.rhs.resize(N_ + 1);
   for (int k = 0; k <= N_; ++k) {
-    qp_[k].h.setZero();
-    qp_[k].c.setZero();
+    const StageQp& q = qp_[k];
+    w.rhs[k].h.setZero(q.H.rows());
+    w.rhs[k].b.setZero(q.A.rows());
+    w.rhs[k].c.setZero(q.C.rows());
   }
   for (int v = 0; v < n_; ++v)
-    if (!fixed_[v]) qp_[layout_.stage[v]].h[colOf(layout_.stage[v], v)] = -rx[v];
+    if (!fixed_[v]) w.rhs[layout_.stage[v]].h[colOf(layout_.stage[v], v)] = -rx[v];
   for (int k = 0; k < N_; ++k) {
-    StageQp& q = qp_[k];
+    StageRhs& q = w.rhs[k];
     for (int j = 0; j < nx_[k + 1]; ++j) q.b[j] = rc[dyn_rows_[k][j]] / diag_[dyn_rows_[k][j]];
   }
-  Eigen::VectorXd a;
+  Eigen::VectorXd& a = w.a;
   double shift = 0.0;
   for (int k = 0; k <= N_; ++k) {
-    StageQp& q = qp_[k];
+    StageRhs& q = w.rhs[k];
     int i = static_cast<int>(fixed_cols_[k].size());
     for (int r : exact_rows_[k]) {
       const Row& row = rows_[r];
@@ -319,28 +359,41 @@ void StageKktSolver::solveOnce(const Eigen::VectorXd& rx, const Eigen::VectorXd&
       q.c[i++] = shift - rc[r];
     }
     for (int r : penalty_rows_[k]) {
-      rowVector(rows_[r], jac_, a, shift);
+      const Row& row = rows_[r];
+      if (row.kind == RowKind::kLocal) {  // its few entries: the dense update below changes no other entry of h
+        const double coef = rc[r] / dc_[r];
+        for (const Entry& e : row.entries) q.h[e.col] -= coef * jac_[e.slot];
+        continue;
+      }
+      rowVector(row, jac_, &q.b, a, shift);
       q.h.noalias() -= ((rc[r] - shift) / dc_[r]) * a;
     }
   }
-  riccati_.solve(qp_, sol_);
+}
+
+// The step (dx, dy) of the NLP from the stage solution in w.
+void StageKktSolver::recoverStep(SolveWork& w, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
+                                 Eigen::VectorXd& dy) const {
+  const std::vector<StageSolution>& sol = w.sol;
+  Eigen::VectorXd& a = w.a;
+  double shift = 0.0;
   dx.setZero(n_);
   for (int v = 0; v < n_; ++v) {
     if (fixed_[v]) continue;
-    const StageSolution& s = sol_[layout_.stage[v]];
+    const StageSolution& s = sol[layout_.stage[v]];
     dx[v] = layout_.is_state[v] ? s.x[local_[v]] : s.u[local_[v]];
   }
   dy.setZero(m_);
-  Eigen::VectorXd z;
+  Eigen::VectorXd& z = w.z;
   for (int k = 0; k <= N_; ++k) {
-    const StageSolution& s = sol_[k];
+    const StageSolution& s = sol[k];
     int i = static_cast<int>(fixed_cols_[k].size());
     for (int r : exact_rows_[k]) dy[r] = s.eta[i++];
     if (penalty_rows_[k].empty()) continue;
     z.resize(s.x.size() + s.u.size());
     z << s.x, s.u;
     for (int r : penalty_rows_[k]) {
-      rowVector(rows_[r], jac_, a, shift);
+      rowVector(rows_[r], jac_, &w.rhs[k].b, a, shift);
       dy[r] = (a.dot(z) + shift - rc[r]) / dc_[r];
     }
   }
@@ -348,7 +401,7 @@ void StageKktSolver::solveOnce(const Eigen::VectorXd& rx, const Eigen::VectorXd&
   for (int k = 0; k < N_; ++k)
     for (int j = 0; j < nx_[k + 1]; ++j) {
       const int r = dyn_rows_[k][j];
-      dy[r] = -sol_[k].lambda[j] / diag_[r];
+      dy[r] = -sol[k].lambda[j] / diag_[r];
     }
   for (int k = 0; k < N_; ++k)
     for (int r : stage_rows_[k]) {

@@ -47,11 +47,13 @@ class StageKktSolver final : public KktSolver {
   /// relative residual is below 1e-12: rows whose controls were nearly dependent are passed to the previous
   /// stage by the recursion, which leaves an error of the size of the pivot threshold.
   void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy) override;
+  /// The two recursions run in one pass over the factors (RiccatiSolver::solveTwo); refined one after the other.
+  void solveTwo(const KktSolve& a, const KktSolve& b) override;
   /// Fill the stage blocks and run the row part of each stage of the recursion on a second thread, ahead of the
   /// cost parts (RiccatiSolver::setParallel): the scattering of the sparse values and the rank splits of the rows
   /// then overlap the reduced Hessians. The results are bit-identical to the sequential ones.
   void setPipelined(bool on);
-  /// Relative residual of the last solve (after refinement).
+  /// Relative residual of the last solve (after refinement; of b after solveTwo).
   double lastResidual() const { return last_residual_; }
   int max_refinement = 3;
   const std::vector<char>& alwaysExactRows() const override { return dynamics_row_; }
@@ -82,10 +84,30 @@ class StageKktSolver final : public KktSolver {
   int colOf(int stage, int var) const;  // column of a variable in a stage's augmented z (-1 if absent)
   void analyzeRows(const SparsePattern& p, const std::vector<char>& equality);
   void analyzeCarried(const SparsePattern& p);
-  void rowVector(const Row& row, const double* jac, Eigen::VectorXd& a, double& rhs_shift) const;
+  /// The vectors of one solve (right-hand sides, solution, refinement): one per concurrent solve.
+  struct SolveWork {
+    std::vector<StageRhs> rhs;
+    std::vector<StageSolution> sol;
+    RiccatiVectors vec;
+    Eigen::VectorXd res_x, res_c, ddx, ddy, a, z;
+    double residual = 0.0;
+  };
+  /// b: the right-hand sides of the dynamics of the row's stage, for rhs_shift (nullptr: not needed).
+  void rowVector(const Row& row, const double* jac, const Eigen::VectorXd* b, Eigen::VectorXd& a,
+                 double& rhs_shift) const;
   /// Scatter the values of stage k into qp_[k] (and the dynamics scales of its rows); touches no other stage.
   void fillStage(int k);
-  void solveOnce(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy);
+  /// Solve and refine (reads only the factorization, writes only w).
+  void solveWith(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
+                 Eigen::VectorXd& dy) const;
+  void solveOnce(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
+                 Eigen::VectorXd& dy) const;
+  /// Iterative refinement of (dx, dy) on the residual of the whole system; sets w.residual.
+  void refine(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
+              Eigen::VectorXd& dy) const;
+  void stageRhs(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc) const;
+  void recoverStep(SolveWork& w, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy) const;
+  double largestEntry() const;
   /// r = rhs - K [dx; dy]; returns the scale max(|rhs|, |K| |[dx; dy]|) for the relative residual.
   double residual(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, const Eigen::VectorXd& dx,
                   const Eigen::VectorXd& dy, Eigen::VectorXd& res_x, Eigen::VectorXd& res_c) const;
@@ -112,7 +134,8 @@ class StageKktSolver final : public KktSolver {
   const double* hess_ = nullptr;
   Eigen::VectorXd dx_diag_, dc_;
   double last_residual_ = 0.0;
-  Eigen::VectorXd res_x_, res_c_, ddx_, ddy_;
+  double kmax_ = -1.0;  // largest entry of the factored matrix (-1: not computed since the last factor())
+  SolveWork work_[2];
   std::vector<int> nz_;                       // nonzero columns of a substituted row
   std::vector<std::vector<int>> exact_rows_;  // per stage: NLP rows kept as rows of C_k
   std::vector<std::vector<int>> penalty_rows_;

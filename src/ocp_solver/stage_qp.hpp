@@ -30,6 +30,12 @@ struct StageQp {
   void resize(int state, int control, int rows, int nx_next);
 };
 
+/// The right-hand side (h, b, c) of a StageQp without its matrices: solves that share one factorization (e.g.
+/// concurrently) each bring their own.
+struct StageRhs {
+  Eigen::VectorXd h, b, c;
+};
+
 struct StageSolution {
   Eigen::VectorXd x, u;
   Eigen::VectorXd lambda;  ///< multiplier of the dynamics x_{k+1} = ... (nx_{k+1}; empty at the last stage)

@@ -66,6 +66,18 @@ void compareWithDense(const Ocp& ocp, unsigned seed, double dxv = 50.0, double l
   p.solve(rx, rc, px, py);
   EXPECT_EQ(px, sx);
   EXPECT_EQ(py, sy);
+  // Two right-hand sides in one pass over the factors (the interior point's affine and centring steps): the same
+  // bits as one after the other.
+  Eigen::VectorXd rx2 = rx, rc2 = rc, sx2, sy2, ax, ay, bx, by;
+  for (int i = 0; i < rx2.size(); ++i) rx2[i] += U(rng);
+  for (int r = 0; r < rc2.size(); ++r) rc2[r] *= 1.0 + U(rng);
+  s.solve(rx2, rc2, sx2, sy2);
+  p.solveTwo({rx, rc, ax, ay}, {rx2, rc2, bx, by});
+  EXPECT_EQ(ax, sx);
+  EXPECT_EQ(ay, sy);
+  EXPECT_EQ(bx, sx2);
+  EXPECT_EQ(by, sy2);
+  EXPECT_NE(bx, sx);
 }
 
 std::vector<std::string> shortHorizon() {
