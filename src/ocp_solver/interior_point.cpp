@@ -68,6 +68,12 @@ void Ipm::setupProblem() {
     has_gl_[r] = ineq_[r] && std::isfinite(gl_[r]);
     has_gu_[r] = ineq_[r] && std::isfinite(gu_[r]);
   }
+  x_bounded_.clear();
+  s_bounded_.clear();
+  for (int i = 0; i < n_; ++i)
+    if (has_xl_[i] || has_xu_[i]) x_bounded_.push_back(i);
+  for (int r = 0; r < m_; ++r)
+    if (has_gl_[r] || has_gu_[r]) s_bounded_.push_back(r);
   // As Ipopt: every inequality bound is relaxed by bound_relax_factor * max(1, |bound|) (in the scaled
   // variables), so that the interior is never empty; the final x is projected back (honor_original_bounds).
   xl_orig_ = xl_;

@@ -54,8 +54,8 @@ class Ipm {
     int nd = 0;
   };
   QualityBase qualityBase() const;
-  double qualityFunction(const Direction& aff, const Direction& cen, double sigma, double tau, const QualityBase& base,
-                         Direction& d) const;
+  double qualityFunction(const Direction& aff, const Direction& cen, double sigma, double tau,
+                         const QualityBase& base) const;
   void combine(const Direction& aff, const Direction& cen, double sigma, Direction& d) const;
   bool progressAcceptable() const;
   void rememberProgress();
@@ -90,6 +90,7 @@ class Ipm {
   Vec xl_, xu_, gl_, gu_;  // bounds as the method sees them (scaled x, relaxed)
   Vec xl_orig_, xu_orig_, gl_orig_, gu_orig_;  // the bounds before the relaxation
   std::vector<char> fixed_, has_xl_, has_xu_, ineq_, has_gl_, has_gu_;
+  std::vector<int> x_bounded_, s_bounded_;  // variables and rows with a bound, ascending
   std::vector<double> jac_scale_, hess_scale_;
 
   // iterate (scaled)
