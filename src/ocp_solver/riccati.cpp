@@ -135,8 +135,13 @@ void RiccatiSolver::stageRows(const std::vector<StageQp>& qp, int k) {
   s.Cs.resize(s.m, n);
   s.Cs.topRows(s.m_own) = d.C;
   if (next) {
-    sparseColumns(d.A, d.B, next->nx, s.Msp);
-    if (npend > 0) denseTimesSparse(next->Gamma, s.Msp, s.Cs.bottomRows(npend), false);
+    if (d.M.cols == n && d.M.rows == next->nx) {
+      s.M = &d.M;
+    } else {
+      sparseColumns(d.A, d.B, next->nx, s.Msp);
+      s.M = &s.Msp;
+    }
+    if (npend > 0) denseTimesSparse(next->Gamma, *s.M, s.Cs.bottomRows(npend), false);
   }
   eliminateRows(s);
 }
@@ -152,9 +157,9 @@ bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
   if (k < N) {
     const Stage& next = st_[k + 1];
     s.PM.resize(next.nx, n);
-    denseTimesSparse(next.P, s.Msp, s.PM, false, &s.perm);
+    denseTimesSparse(next.P, *s.M, s.PM, false, &s.perm);
     s.PMt = s.PM.transpose();
-    denseTimesSparse(s.PMt, s.Msp, s.Qp, true, &s.perm);
+    denseTimesSparse(s.PMt, *s.M, s.Qp, true, &s.perm);
   }
   return eliminateCost(s);
 }

@@ -139,7 +139,8 @@ struct RiccatiSolver::Stage {
   std::vector<int> kept;      // their positions among the dependent rows
   // workspace
   Eigen::MatrixXd PM, PMt, X, F;
-  SparseColumns Msp;          // the dynamics M = [A B] (exact zeros dropped)
+  SparseColumns Msp;          // the dynamics M = [A B] (exact zeros dropped), unless the StageQp gives it
+  const SparseColumns* M = nullptr;  // Msp or the StageQp's
   // helpers
   void solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const;  // Qh_NN^{-1} rhs
 };

@@ -25,7 +25,65 @@ StageKktSolver::StageKktSolver(const SparsePattern& p, const StageLayout& layout
   if (nu_[N_] != 0) throw StructureError("StageKktSolver: the last stage has controls");
   analyzeRows(p, equality);
   analyzeCarried(p);
+  analyzeDynamics();
   diag_.setZero(m_);
+}
+
+// Where each stage's dynamics [A B] can be nonzero: the entries of its dynamics rows and the copies of the carried
+// variables, by column, then row.
+void StageKktSolver::analyzeDynamics() {
+  dyn_pattern_.assign(N_ + 1, {});
+  for (int k = 0; k < N_; ++k) {
+    std::vector<std::pair<int, int>>& pat = dyn_pattern_[k];
+    for (int j = 0; j < nx_[k + 1]; ++j)
+      for (const Entry& e : rows_[dyn_rows_[k][j]].entries)
+        if (!e.next) pat.emplace_back(e.col, j);
+    for (std::size_t c = 0; c < carried_[k + 1].size(); ++c)
+      pat.emplace_back(carry_src_[k + 1][c], nx_[k + 1] + static_cast<int>(c));
+    std::sort(pat.begin(), pat.end());
+    pat.erase(std::unique(pat.begin(), pat.end()), pat.end());
+  }
+}
+
+// Size the blocks of stage k and zero what fillStage accumulates into. A and B keep their size from one
+// factorization to the next and are only ever written where the dynamics can be nonzero, so only those entries
+// are reset; C's rows are all written by fillStage.
+void StageKktSolver::resetStage(int k, int nxa, int m, int nxn) {
+  StageQp& q = qp_[k];
+  const int n = nxa + nu_[k];
+  q.nx = nxa;
+  q.nu = nu_[k];
+  q.H.setZero(n, n);
+  q.h.setZero(n);
+  q.b.setZero(nxn);
+  q.c.setZero(m);
+  q.C.resize(m, n);
+  if (q.A.rows() != nxn || q.A.cols() != nxa || q.B.cols() != nu_[k]) {
+    q.A.setZero(nxn, nxa);
+    q.B.setZero(nxn, nu_[k]);
+  } else {
+    for (const auto& [col, row] : dyn_pattern_[k]) (col < nxa ? q.A(row, col) : q.B(row, col - nxa)) = 0.0;
+  }
+}
+
+// [A B] of stage k by sparse columns from its possible nonzeros (the entries sparseColumns() would keep).
+void StageKktSolver::sparseDynamics(int k) {
+  StageQp& q = qp_[k];
+  SparseColumns& M = q.M;
+  const int cols = q.nx + q.nu;
+  M.rows = static_cast<int>(q.A.rows());
+  M.cols = cols;
+  M.start.assign(cols + 1, 0);
+  M.row.clear();
+  M.value.clear();
+  for (const auto& [col, row] : dyn_pattern_[k]) {
+    const double v = col < q.nx ? q.A(row, col) : q.B(row, col - q.nx);
+    if (v == 0.0) continue;
+    M.row.push_back(row);
+    M.value.push_back(v);
+    ++M.start[col + 1];
+  }
+  for (int j = 0; j < cols; ++j) M.start[j + 1] += M.start[j];
 }
 
 int StageKktSolver::colOf(int stage, int var) const {
@@ -177,7 +235,7 @@ void StageKktSolver::fillStage(int k) {
   const int m = static_cast<int>(fixed_cols_[k].size() + exact_rows_[k].size());
   const int nxa = nx_[k] + static_cast<int>(carried_[k].size());
   const int nxn = k < N_ ? nx_[k + 1] + static_cast<int>(carried_[k + 1].size()) : 0;
-  q.resize(nxa, nu_[k], m, nxn);
+  resetStage(k, nxa, m, nxn);
   for (const HessEntry& h : hess_entries_[k]) {
     q.H(h.r, h.c) += hess_[h.slot];
     if (h.r != h.c) q.H(h.c, h.r) += hess_[h.slot];
@@ -205,10 +263,14 @@ void StageKktSolver::fillStage(int k) {
       if (src < q.nx) q.A(dst, src) = 1.0;
       else q.B(dst, src - q.nx) = 1.0;
     }
+    sparseDynamics(k);
   }
   double shift = 0.0;
   int i = 0;
-  for (int c : fixed_cols_[k]) q.C(i++, c) = 1.0;
+  for (int c : fixed_cols_[k]) {
+    q.C.row(i).setZero();
+    q.C(i++, c) = 1.0;
+  }
   for (int r : exact_rows_[k]) {
     rowVector(rows_[r], jac_, nullptr, a, shift);
     q.C.row(i++) = a.transpose();

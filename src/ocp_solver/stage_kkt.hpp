@@ -15,6 +15,7 @@
 // The structure is analysed once; factor() scatters the values into preallocated stage blocks.
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ocp_solver/kkt_system.hpp"
@@ -84,6 +85,9 @@ class StageKktSolver final : public KktSolver {
   int colOf(int stage, int var) const;  // column of a variable in a stage's augmented z (-1 if absent)
   void analyzeRows(const SparsePattern& p, const std::vector<char>& equality);
   void analyzeCarried(const SparsePattern& p);
+  void analyzeDynamics();
+  void resetStage(int k, int nxa, int m, int nxn);
+  void sparseDynamics(int k);
   /// The vectors of one solve (right-hand sides, solution, refinement): one per concurrent solve.
   struct SolveWork {
     std::vector<StageRhs> rhs;
@@ -127,6 +131,8 @@ class StageKktSolver final : public KktSolver {
   std::vector<std::vector<HessEntry>> hess_entries_;  // per stage, in the order of the Hessian's nonzeros
   std::vector<std::vector<int>> stage_vars_;           // per stage: its variables
   std::vector<std::vector<int>> fixed_cols_; // per stage: columns of fixed variables (unit rows)
+  std::vector<std::vector<std::pair<int, int>>> dyn_pattern_;  // per stage k < N: (column, row) of [A B] that can
+                                                               // be nonzero, sorted
 
   // values of the last factor()
   const SparsePattern pattern_;

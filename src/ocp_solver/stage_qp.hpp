@@ -13,6 +13,8 @@
 
 #include <vector>
 
+#include "ocp_solver/block_ops.hpp"
+
 namespace centaur::ocp_solver {
 
 struct StageQp {
@@ -25,6 +27,9 @@ struct StageQp {
   Eigen::VectorXd b;   ///< nx_{k+1}
   Eigen::MatrixXd C;   ///< m_k x (nx+nu), may have no rows
   Eigen::VectorXd c;   ///< m_k
+  /// Optional: [A B] by sparse columns, exact zeros dropped (as sparseColumns() gives it), from a caller that knows
+  /// where the dynamics can be nonzero; left empty (0 columns), the factorization builds it from A and B.
+  SparseColumns M;
 
   /// Size every block for these dimensions (nx_next = 0 at the last stage) and zero it.
   void resize(int state, int control, int rows, int nx_next);
