@@ -155,56 +155,46 @@ Ipm::QualityBase Ipm::qualityBase() const {
 // rules of the line search on the combined step, in two passes.
 double Ipm::qualityFunction(const Direction& a, const Direction& c, double sigma, double tau,
                             const QualityBase& base) const {
+  // The two families of bounded components: the variables (bound multipliers z) and the slacks of the inequality
+  // rows (v), each with the affine and the centring direction of the value and of both multipliers.
+  struct Family {
+    const std::vector<int>& idx;
+    const Vec &v, &lo, &hi, &zl, &zu;
+    const std::vector<char> &has_lo, &has_hi;
+    const Vec &av, &cv, &azl, &czl, &azu, &czu;
+  };
+  const Family fams[2] = {{x_bounded_, x_, xl_, xu_, zl_, zu_, has_xl_, has_xu_, a.x, c.x, a.zl, c.zl, a.zu, c.zu},
+                          {s_bounded_, s_, gl_, gu_, vl_, vu_, has_gl_, has_gu_, a.s, c.s, a.vl, c.vl, a.vu, c.vu}};
   auto mix = [sigma](const Vec& va, const Vec& vc, int i) { return va[i] + sigma * (vc[i] - va[i]); };
   double ap = 1.0, ad = 1.0;  // as maxStep and maxDualStep (a minimum does not depend on the order)
-  for (int i : x_bounded_) {
-    const double dx = mix(a.x, c.x, i);
-    if (has_xl_[i]) {
-      if (dx < 0.0) ap = std::min(ap, -tau * (x_[i] - xl_[i]) / dx);
-      const double dz = mix(a.zl, c.zl, i);
-      if (dz < 0.0) ad = std::min(ad, -tau * zl_[i] / dz);
-    }
-    if (has_xu_[i]) {
-      if (dx > 0.0) ap = std::min(ap, tau * (xu_[i] - x_[i]) / dx);
-      const double dz = mix(a.zu, c.zu, i);
-      if (dz < 0.0) ad = std::min(ad, -tau * zu_[i] / dz);
-    }
-  }
-  for (int r : s_bounded_) {
-    const double ds = mix(a.s, c.s, r);
-    if (has_gl_[r]) {
-      if (ds < 0.0) ap = std::min(ap, -tau * (s_[r] - gl_[r]) / ds);
-      const double dv = mix(a.vl, c.vl, r);
-      if (dv < 0.0) ad = std::min(ad, -tau * vl_[r] / dv);
-    }
-    if (has_gu_[r]) {
-      if (ds > 0.0) ap = std::min(ap, tau * (gu_[r] - s_[r]) / ds);
-      const double dv = mix(a.vu, c.vu, r);
-      if (dv < 0.0) ad = std::min(ad, -tau * vu_[r] / dv);
+  for (const Family& f : fams) {
+    for (int i : f.idx) {
+      const double dv = mix(f.av, f.cv, i);
+      if (f.has_lo[i]) {
+        if (dv < 0.0) ap = std::min(ap, -tau * (f.v[i] - f.lo[i]) / dv);
+        const double dz = mix(f.azl, f.czl, i);
+        if (dz < 0.0) ad = std::min(ad, -tau * f.zl[i] / dz);
+      }
+      if (f.has_hi[i]) {
+        if (dv > 0.0) ap = std::min(ap, tau * (f.hi[i] - f.v[i]) / dv);
+        const double dz = mix(f.azu, f.czu, i);
+        if (dz < 0.0) ad = std::min(ad, -tau * f.zu[i] / dz);
+      }
     }
   }
   double compl_sq = 0.0;
   int nc = 0;
-  for (int i : x_bounded_) {
-    const double dx = mix(a.x, c.x, i);
-    if (has_xl_[i]) {
-      const double v = (x_[i] + ap * dx - xl_[i]) * (zl_[i] + ad * mix(a.zl, c.zl, i));
-      compl_sq += v * v, ++nc;
-    }
-    if (has_xu_[i]) {
-      const double v = (xu_[i] - x_[i] - ap * dx) * (zu_[i] + ad * mix(a.zu, c.zu, i));
-      compl_sq += v * v, ++nc;
-    }
-  }
-  for (int r : s_bounded_) {
-    const double ds = mix(a.s, c.s, r);
-    if (has_gl_[r]) {
-      const double v = (s_[r] + ap * ds - gl_[r]) * (vl_[r] + ad * mix(a.vl, c.vl, r));
-      compl_sq += v * v, ++nc;
-    }
-    if (has_gu_[r]) {
-      const double v = (gu_[r] - s_[r] - ap * ds) * (vu_[r] + ad * mix(a.vu, c.vu, r));
-      compl_sq += v * v, ++nc;
+  for (const Family& f : fams) {
+    for (int i : f.idx) {
+      const double dv = mix(f.av, f.cv, i);
+      if (f.has_lo[i]) {
+        const double w = (f.v[i] + ap * dv - f.lo[i]) * (f.zl[i] + ad * mix(f.azl, f.czl, i));
+        compl_sq += w * w, ++nc;
+      }
+      if (f.has_hi[i]) {
+        const double w = (f.hi[i] - f.v[i] - ap * dv) * (f.zu[i] + ad * mix(f.azu, f.czu, i));
+        compl_sq += w * w, ++nc;
+      }
     }
   }
   return (1.0 - ad) * (1.0 - ad) * base.dual / std::max(1, base.nd) + (1.0 - ap) * (1.0 - ap) * base.primal +
