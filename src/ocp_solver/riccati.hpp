@@ -82,8 +82,8 @@ class RiccatiSolver {
     std::vector<StageSolution>& sol;
     RiccatiVectors& ws;
   };
-  /// Two solves in one pass over the factors, stage by stage one after the other: each stage's factors are read
-  /// from memory once for both (the solves are bound by reading the factors). The results are those of solve().
+  /// Two solves in one pass over the factors, stage by stage one after the other, so that each stage's factors are
+  /// still in cache for the second. The results are those of solve(), bit for bit.
   void solveTwo(const std::vector<StageQp>& qp, const Rhs& a, const Rhs& b) const;
 
   const Inertia& inertia() const { return inertia_; }

@@ -88,7 +88,7 @@ class StageKktSolver final : public KktSolver {
   void analyzeDynamics();
   void resetStage(int k, int nxa, int m, int nxn);
   void sparseDynamics(int k);
-  /// The vectors of one solve (right-hand sides, solution, refinement): one per concurrent solve.
+  /// The vectors of one solve (right-hand sides, solution, refinement): one for each solve of solveTwo().
   struct SolveWork {
     std::vector<StageRhs> rhs;
     std::vector<StageSolution> sol;
@@ -101,7 +101,7 @@ class StageKktSolver final : public KktSolver {
                  double& rhs_shift) const;
   /// Scatter the values of stage k into qp_[k] (and the dynamics scales of its rows); touches no other stage.
   void fillStage(int k);
-  /// Solve and refine (reads only the factorization, writes only w).
+  /// Solve and refine (reads the factorization, writes w and the step only).
   void solveWith(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
                  Eigen::VectorXd& dy) const;
   void solveOnce(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
