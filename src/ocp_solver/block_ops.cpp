@@ -1,5 +1,6 @@
 #include "ocp_solver/block_ops.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace centaur::ocp_solver {
@@ -30,14 +31,45 @@ void sparseColumns(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows,
   out.start[out.cols] = p;
 }
 
-void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, int identity_head, Eigen::MatrixXd& out) {
+void sparseColsTimesAdd(const SparseColumns& S, int col0, const Eigen::VectorXd& x, Eigen::VectorXd& t, double* y) {
+  t.setZero(S.rows);
+  double* __restrict acc = t.data();
+  const int n = static_cast<int>(x.size());
+  for (int j = 0; j < n; ++j) {
+    const double xj = x[j];
+    for (int p = S.start[col0 + j]; p < S.start[col0 + j + 1]; ++p) acc[S.row[p]] += S.value[p] * xj;
+  }
+  for (int i = 0; i < S.rows; ++i) y[i] += acc[i];
+}
+
+void sparseColsTransposedTimesAdd(const SparseColumns& S, int col0, int n, const Eigen::VectorXd& x, double* y) {
+  // Eigen's row-major kernel: lanes of packet width L over the rows below the last full packet, their sum, then
+  // the remaining rows in order.
+  constexpr int kLanes = Eigen::internal::packet_traits<double>::Vectorizable
+                             ? Eigen::internal::packet_traits<double>::size : 1;
+  constexpr int L = kLanes == 2 ? 2 : 1;
+  const int packed = S.rows - S.rows % L;
+  for (int j = 0; j < n; ++j) {
+    double lane[2] = {0.0, 0.0};
+    int p = S.start[col0 + j];
+    const int end = S.start[col0 + j + 1];
+    for (; p < end && S.row[p] < packed; ++p) lane[S.row[p] % L] += S.value[p] * x[S.row[p]];
+    double sum = L == 2 ? lane[0] + lane[1] : lane[0];
+    for (; p < end; ++p) sum += S.value[p] * x[S.row[p]];
+    y[j] += sum;
+  }
+}
+
+void permuteSymmetric(const Eigen::MatrixXd& in, const std::vector<int>& perm, int identity_head, Eigen::MatrixXd& out,
+                      int lower_cols) {
   const int n = static_cast<int>(perm.size());
   out.resize(n, n);
   for (int j = 0; j < n; ++j) {
     const double* __restrict src = in.col(perm[j]).data();
     double* __restrict dst = out.col(j).data();
-    for (int i = 0; i < identity_head; ++i) dst[i] = src[i];
-    for (int i = identity_head; i < n; ++i) dst[i] = src[perm[i]];
+    const int i0 = j < lower_cols ? j : 0;
+    for (int i = i0; i < identity_head; ++i) dst[i] = src[i];
+    for (int i = std::max(i0, identity_head); i < n; ++i) dst[i] = src[perm[i]];
   }
 }
 

@@ -77,8 +77,13 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
   // triangle only, then mirrored).
   s.F = s.Qp.block(w, 0, r, w);
   s.F.noalias() += 0.5 * s.Qp.bottomRightCorner(r, r) * s.E;
-  s.Qh = s.Qp.topLeftCorner(w, w);
-  if (r > 0 && w > 0) {
+  if (s.lowerOnlyCols() > 0) {
+    s.Qh.resize(w, w);
+    s.Qh.triangularView<Eigen::Lower>() = s.Qp.topLeftCorner(w, w);
+  } else {
+    s.Qh = s.Qp.topLeftCorner(w, w);
+  }
+  if (s.lowerOnlyCols() > 0) {
     s.Qh.triangularView<Eigen::Lower>() += s.E.transpose() * s.F;
     s.Qh.triangularView<Eigen::Lower>() += s.F.transpose() * s.E;
     s.Qh.triangularView<Eigen::StrictlyUpper>() = s.Qh.transpose();
@@ -148,18 +153,19 @@ void RiccatiSolver::stageRows(const std::vector<StageQp>& qp, int k) {
 
 // Cost part of stage k (after its row part and the cost part of stage k+1): Qp = H + M' P_{k+1} M in the elimination
 // order (H permuted, then M's columns taken in the same order: the same sums as permuting H + M' P M), then
-// eliminateCost.
+// eliminateCost. The entries of Qp above the diagonal that eliminateCost and the solves never read are skipped.
 bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
   const int N = static_cast<int>(qp.size()) - 1;
   Stage& s = st_[k];
   const int n = qp[k].nx + qp[k].nu;
-  permuteSymmetric(qp[k].H, s.perm, s.nx, s.Qp);
+  const int lower = s.lowerOnlyCols();
+  permuteSymmetric(qp[k].H, s.perm, s.nx, s.Qp, lower);
   if (k < N) {
     const Stage& next = st_[k + 1];
     s.PM.resize(next.nx, n);
     denseTimesSparse(next.P, *s.M, s.PM, false, &s.perm);
     s.PMt = s.PM.transpose();
-    denseTimesSparse(s.PMt, *s.M, s.Qp, true, &s.perm);
+    denseTimesSparse(s.PMt, *s.M, s.Qp, true, &s.perm, lower);
   }
   return eliminateCost(s);
 }
@@ -244,7 +250,6 @@ void RiccatiSolver::backwardStage(const std::vector<StageQp>& qp, const std::vec
     v.q = ws.st[0].p;
     v.cs = ws.st[0].gamma;
   } else {
-    const StageQp& d = qp[k];
     const StageRhs& dr = rhs[k];
     v.q = dr.h;
     v.cs.resize(s.m);
@@ -254,8 +259,8 @@ void RiccatiSolver::backwardStage(const std::vector<StageQp>& qp, const std::vec
       const RiccatiVectors::Stage& v1 = ws.st[k + 1];
       ws.wv = v1.p;
       ws.wv.noalias() += nx1.P * dr.b;
-      v.q.head(nx).noalias() += d.A.transpose() * ws.wv;
-      v.q.tail(nu).noalias() += d.B.transpose() * ws.wv;
+      sparseColsTransposedTimesAdd(*s.M, 0, nx, ws.wv, v.q.data());  // A' w and B' w, the bits of the dense ones
+      sparseColsTransposedTimesAdd(*s.M, nx, nu, ws.wv, v.q.data() + nx);
       v.cs.tail(s.m - s.m_own) = v1.gamma;
       v.cs.tail(s.m - s.m_own).noalias() += nx1.Gamma * dr.b;
     }
@@ -334,8 +339,8 @@ void RiccatiSolver::forwardStage(const std::vector<StageQp>& qp, const std::vect
   const Stage& nx1 = st_[k + 1];
   ws.eta_pending = ws.eta_stacked.tail(s.m - s.m_own);
   ws.x = rhs[k].b;
-  ws.x.noalias() += qp[k].A * o.x;
-  ws.x.noalias() += qp[k].B * o.u;
+  sparseColsTimesAdd(*s.M, 0, o.x, ws.dyn, ws.x.data());  // A x, then B u: the bits of the dense products
+  sparseColsTimesAdd(*s.M, s.nx, o.u, ws.dyn, ws.x.data());
   o.lambda = ws.st[k + 1].p;
   o.lambda.noalias() += nx1.P * ws.x;
   o.lambda.noalias() += nx1.Gamma.transpose() * ws.eta_pending;

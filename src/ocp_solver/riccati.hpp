@@ -46,7 +46,7 @@ struct RiccatiVectors {
     Eigen::VectorXd zp, g, eta_t;
   };
   std::vector<Stage> st;  // stages 0..N, then the initial state
-  Eigen::VectorXd wv, ct, t, gb, x, z, eta_stacked, eta_pending;
+  Eigen::VectorXd wv, ct, t, gb, x, z, eta_stacked, eta_pending, dyn;
 };
 
 class RiccatiSolver {
@@ -143,6 +143,9 @@ struct RiccatiSolver::Stage {
   const SparseColumns* M = nullptr;  // Msp or the StageQp's
   // helpers
   void solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const;  // Qh_NN^{-1} rhs
+  /// The columns of Qp (and Qh) whose entries above the diagonal are never read: those of [x; u_N] when rows were
+  /// eliminated, because Qh is then updated in its lower triangle and mirrored. 0 otherwise.
+  int lowerOnlyCols() const { return rank > 0 && nx + nv > 0 ? nx + nv : 0; }
 };
 
 }  // namespace centaur::ocp_solver
