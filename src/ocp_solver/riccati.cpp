@@ -77,16 +77,14 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
   // triangle only, then mirrored).
   s.F = s.Qp.block(w, 0, r, w);
   s.F.noalias() += 0.5 * s.Qp.bottomRightCorner(r, r) * s.E;
-  if (s.lowerOnlyCols() > 0) {
+  if (s.lowerOnlyCols() > 0) {  // r > 0 and w > 0; Qp's upper part of these columns was not formed
     s.Qh.resize(w, w);
     s.Qh.triangularView<Eigen::Lower>() = s.Qp.topLeftCorner(w, w);
-  } else {
-    s.Qh = s.Qp.topLeftCorner(w, w);
-  }
-  if (s.lowerOnlyCols() > 0) {
     s.Qh.triangularView<Eigen::Lower>() += s.E.transpose() * s.F;
     s.Qh.triangularView<Eigen::Lower>() += s.F.transpose() * s.E;
     s.Qh.triangularView<Eigen::StrictlyUpper>() = s.Qh.transpose();
+  } else {
+    s.Qh = s.Qp.topLeftCorner(w, w);
   }
   s.use_eig = false;
   s.K.resize(nv, nx);
