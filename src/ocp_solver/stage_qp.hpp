@@ -27,8 +27,9 @@ struct StageQp {
   Eigen::VectorXd b;   ///< nx_{k+1}
   Eigen::MatrixXd C;   ///< m_k x (nx+nu), may have no rows
   Eigen::VectorXd c;   ///< m_k
-  /// Optional: [A B] by sparse columns, exact zeros dropped (as sparseColumns() gives it), from a caller that knows
-  /// where the dynamics can be nonzero; left empty (0 columns), the factorization builds it from A and B.
+  /// Optional: [A B] by sparse columns, exact zeros dropped and each column's entries in row order (as
+  /// sparseColumns() gives it), from a caller that knows where the dynamics can be nonzero; left empty (0 columns),
+  /// the factorization builds it from A and B. The factorization and the solves multiply by it instead of A and B.
   SparseColumns M;
 
   /// Size every block for these dimensions (nx_next = 0 at the last stage) and zero it.
