@@ -328,16 +328,36 @@ double StageKktSolver::residual(const Eigen::VectorXd& rx, const Eigen::VectorXd
                                 const Eigen::VectorXd& dy, Eigen::VectorXd& res_x, Eigen::VectorXd& res_c) const {
   res_x = rx;
   res_c = rc;
-  for (std::size_t t = 0; t < pattern_.hess_rows.size(); ++t) {
-    const int a = pattern_.hess_rows[t], b = pattern_.hess_cols[t];
-    res_x[a] -= hess_[t] * dx[b];
-    if (a != b) res_x[b] -= hess_[t] * dx[a];
+  // Each entry gets the subtractions of a plain loop over the triplets, in the same order; a run of triplets of one
+  // row keeps that row's entry in a register instead of storing it after every triplet (the patterns list their
+  // triplets by row; any order gives the same result).
+  const int nh = static_cast<int>(pattern_.hess_rows.size()), nj = static_cast<int>(pattern_.jac_rows.size());
+  const int* hr = pattern_.hess_rows.data();
+  const int* hc = pattern_.hess_cols.data();
+  for (int t = 0; t < nh;) {
+    const int a = hr[t];
+    const double dxa = dx[a];
+    double ra = res_x[a];
+    for (; t < nh && hr[t] == a; ++t) {
+      const int b = hc[t];
+      ra -= hess_[t] * dx[b];
+      if (a != b) res_x[b] -= hess_[t] * dxa;
+    }
+    res_x[a] = ra;
   }
   for (int v = 0; v < n_; ++v) res_x[v] -= dx_diag_[v] * dx[v];
-  for (std::size_t t = 0; t < pattern_.jac_rows.size(); ++t) {
-    const int r = pattern_.jac_rows[t], c = pattern_.jac_cols[t];
-    res_x[c] -= jac_[t] * dy[r];
-    res_c[r] -= jac_[t] * dx[c];
+  const int* jr = pattern_.jac_rows.data();
+  const int* jc = pattern_.jac_cols.data();
+  for (int t = 0; t < nj;) {
+    const int r = jr[t];
+    const double dyr = dy[r];
+    double rr = res_c[r];
+    for (; t < nj && jr[t] == r; ++t) {
+      const int c = jc[t];
+      res_x[c] -= jac_[t] * dyr;
+      rr -= jac_[t] * dx[c];
+    }
+    res_c[r] = rr;
   }
   for (int r = 0; r < m_; ++r)
     if (!dynamics_row_[r]) res_c[r] += dc_[r] * dy[r];
