@@ -32,7 +32,8 @@ struct StageQp {
   /// the factorization builds it from A and B. The factorization and the solves multiply by it instead of A and B.
   SparseColumns M;
 
-  /// Size every block for these dimensions (nx_next = 0 at the last stage) and zero it.
+  /// Size every block for these dimensions (nx_next = 0 at the last stage) and zero it; M is dropped (the
+  /// factorization then builds it from A and B).
   void resize(int state, int control, int rows, int nx_next);
 };
 
@@ -64,6 +65,7 @@ inline void StageQp::resize(int state, int control, int rows, int nx_next) {
   b.setZero(nx_next);
   C.setZero(rows, n);
   c.setZero(rows);
+  M = SparseColumns{};
 }
 
 }  // namespace centaur::ocp_solver

@@ -248,6 +248,42 @@ TEST(Riccati, DependentRowsAreZeroEigenvaluesAndConsistentSystemsStillSolve) {
   }
 }
 
+bool sameBits(const std::vector<StageSolution>& a, const std::vector<StageSolution>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (!(a[k].x == b[k].x && a[k].u == b[k].u && a[k].lambda == b[k].lambda && a[k].eta == b[k].eta)) return false;
+  return true;
+}
+
+// Dynamics given as sparse columns (StageQp::M, as the planner's KKT solver gives them) give the solution of the
+// dense A and B, bit for bit; resize() drops them, so a stage refilled with other dynamics is not solved with stale
+// ones.
+TEST(Riccati, GivenSparseDynamicsGiveTheDenseBitsAndResizeDropsThem) {
+  for (unsigned seed = 500; seed < 530; ++seed) {
+    Gen g(seed);
+    const int N = 1 + seed % 8;
+    const auto qp = nonsingularQp(g, N, Curvature::kConvex, seed % 2 == 1);
+    auto given = qp, refilled = qp;
+    for (int k = 0; k < N; ++k) {
+      sparseColumns(qp[k].A, qp[k].B, static_cast<int>(qp[k].A.rows()), given[k].M);
+      StageQp& s = refilled[k];
+      sparseColumns(2.0 * qp[k].A, qp[k].B, static_cast<int>(qp[k].A.rows()), s.M);  // of other dynamics
+      s.resize(qp[k].nx, qp[k].nu, static_cast<int>(qp[k].C.rows()), static_cast<int>(qp[k].A.rows()));
+      s.H = qp[k].H, s.h = qp[k].h, s.A = qp[k].A, s.B = qp[k].B, s.b = qp[k].b, s.C = qp[k].C, s.c = qp[k].c;
+    }
+    std::vector<StageSolution> ref, from_given, from_refilled;
+    RiccatiSolver a, b, c;
+    ASSERT_EQ(a.factor(qp), RiccatiSolver::Status::kOk) << "seed " << seed;
+    ASSERT_EQ(b.factor(given), RiccatiSolver::Status::kOk) << "seed " << seed;
+    ASSERT_EQ(c.factor(refilled), RiccatiSolver::Status::kOk) << "seed " << seed;
+    a.solve(qp, ref);
+    b.solve(given, from_given);
+    c.solve(refilled, from_refilled);
+    EXPECT_TRUE(sameBits(ref, from_given)) << "seed " << seed;
+    EXPECT_TRUE(sameBits(ref, from_refilled)) << "seed " << seed;
+  }
+}
+
 TEST(Riccati, PlannerSizedSystem) {
   // The squat jump's sizes: 30 stages, 55 states (37 plus 18 carried controls), 31 controls, 6 mixed rows, 12
   // pure-state rows (pinned feet) on most stages, a fixed initial state.
