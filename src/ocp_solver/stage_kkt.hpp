@@ -146,7 +146,6 @@ class StageKktSolver final : public KktSolver {
   std::vector<std::vector<int>> exact_rows_;  // per stage: NLP rows kept as rows of C_k
   std::vector<std::vector<int>> penalty_rows_;
   std::vector<StageQp> qp_;
-  std::vector<StageSolution> sol_;
   RiccatiSolver riccati_;
   Eigen::VectorXd diag_;                      // dynamics row scale d (entry on x_{k+1})
   Eigen::VectorXd fill_a_;                    // row scratch of fillStage()
