@@ -74,7 +74,7 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
   inertia_.zero += s.dependent;
 
   // Reduced Hessian Qh = T' Qp T with T = [I; E]: Qp_WW + E' F + F' E, F = Qp_BW + 1/2 Qp_BB E (lower
-  // triangle only, then mirrored).
+  // triangle only).
   s.F = s.Qp.block(w, 0, r, w);
   s.F.noalias() += 0.5 * s.Qp.bottomRightCorner(r, r) * s.E;
   if (s.lowerOnlyCols() > 0) {  // r > 0 and w > 0; Qp's upper part of these columns was not formed
@@ -82,7 +82,8 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
     s.Qh.triangularView<Eigen::Lower>() = s.Qp.topLeftCorner(w, w);
     s.Qh.triangularView<Eigen::Lower>() += s.E.transpose() * s.F;
     s.Qh.triangularView<Eigen::Lower>() += s.F.transpose() * s.E;
-    s.Qh.triangularView<Eigen::StrictlyUpper>() = s.Qh.transpose();
+    // Above the diagonal only the block of x and u_N is read (the solves); P and the factors read the lower part.
+    s.Qh.topRightCorner(nx, nv) = s.Qh.bottomLeftCorner(nv, nx).transpose();
   } else {
     s.Qh = s.Qp.topLeftCorner(w, w);
   }
@@ -107,16 +108,24 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
       }
     }
   }
-  s.P = s.Qh.topLeftCorner(nx, nx);
-  if (nv > 0 && nx > 0) {
-    if (!s.use_eig) {
-      s.P.selfadjointView<Eigen::Lower>().rankUpdate(s.K.transpose(), -1.0);
-    } else {
-      Eigen::MatrixXd t = s.Qh.bottomLeftCorner(nv, nx);
-      s.solveNN(t);
-      s.P.triangularView<Eigen::Lower>() -= s.Qh.topRightCorner(nx, nv) * t;
+  // P from Qh's lower triangle, mirrored. Where no rows were eliminated and no controls are left to eliminate, P is
+  // Qh's x block as formed: Qp is formed in full there, and P keeps both of its triangles (they may differ in
+  // rounding; mirroring would change the factors' bits).
+  if ((nv > 0 && nx > 0) || s.lowerOnlyCols() > 0) {
+    s.P.resize(nx, nx);
+    s.P.triangularView<Eigen::Lower>() = s.Qh.topLeftCorner(nx, nx);
+    if (nv > 0 && nx > 0) {
+      if (!s.use_eig) {
+        s.P.selfadjointView<Eigen::Lower>().rankUpdate(s.K.transpose(), -1.0);
+      } else {
+        Eigen::MatrixXd t = s.Qh.bottomLeftCorner(nv, nx);
+        s.solveNN(t);
+        s.P.triangularView<Eigen::Lower>() -= s.Qh.topRightCorner(nx, nv) * t;
+      }
     }
     s.P.triangularView<Eigen::StrictlyUpper>() = s.P.transpose();
+  } else {
+    s.P = s.Qh.topLeftCorner(nx, nx);
   }
   return true;
 }

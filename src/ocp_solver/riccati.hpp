@@ -129,7 +129,7 @@ struct RiccatiSolver::Stage {
   std::vector<int> perm;      // z order used below: [x, u_N (free directions), u_B (fixed by the rows)]
   Eigen::MatrixXd Qp;         // the stage cost plus the pulled-back cost-to-go (H + M' P M), in that order
   Eigen::MatrixXd E;          // u_B = E [x; u_N] + e
-  Eigen::MatrixXd Qh;         // reduced Hessian on [x; u_N]
+  Eigen::MatrixXd Qh;         // reduced Hessian on [x; u_N]; above the diagonal only its x-u_N block when rank > 0
   Eigen::LLT<Eigen::MatrixXd> llt;                          // of its u_N block
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;       // fallback (full_inertia only)
   bool use_eig = false;
@@ -143,8 +143,8 @@ struct RiccatiSolver::Stage {
   const SparseColumns* M = nullptr;  // Msp or the StageQp's
   // helpers
   void solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const;  // Qh_NN^{-1} rhs
-  /// The columns of Qp (and Qh) whose entries above the diagonal are never read: those of [x; u_N] when rows were
-  /// eliminated, because Qh is then updated in its lower triangle and mirrored. 0 otherwise.
+  /// The columns of Qp whose entries above the diagonal are never read: those of [x; u_N] when rows were
+  /// eliminated, because Qh is then formed in its lower triangle (and its x-u_N block mirrored). 0 otherwise.
   int lowerOnlyCols() const { return rank > 0 && nx + nv > 0 ? nx + nv : 0; }
 };
 
