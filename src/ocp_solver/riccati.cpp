@@ -42,7 +42,7 @@ void RiccatiSolver::eliminateRows(Stage& s) {
 
   // State part of the rows, in pivot order, with the row transformation applied: the dependent rows become
   // rows on x alone (pending) or vanish (dependent rows of the whole KKT matrix: zero eigenvalues).
-  Eigen::MatrixXd& X = s.X;
+  Eigen::MatrixXd& X = row_scratch_.X;
   gatherRows(s.Cs, rp, nx, X);
   s.lu.applyRowTransform(X);
   s.kept.clear();
@@ -64,9 +64,9 @@ void RiccatiSolver::eliminateRows(Stage& s) {
   solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>(), s.E);
 }
 
-// The cost part of one stage, after its row part and given Qp: the reduced Hessian on the free directions, its
-// factor, the cost-to-go P. Adds the stage's inertia (rows and dynamics first). False on an indefinite reduced
-// Hessian (unless full_inertia).
+// The cost part of one stage, after its row part and given Qp (in the cost scratch): the reduced Hessian on the
+// free directions, its factor, the cost-to-go P. Adds the stage's inertia (rows and dynamics first). False on an
+// indefinite reduced Hessian (unless full_inertia).
 bool RiccatiSolver::eliminateCost(Stage& s) {
   const int nx = s.nx, r = s.rank, nv = s.nv, w = nx + nv;
   inertia_.positive += s.dyn_pairs + r;
@@ -75,30 +75,40 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
 
   // Reduced Hessian Qh = T' Qp T with T = [I; E]: Qp_WW + E' F + F' E, F = Qp_BW + 1/2 Qp_BB E (lower
   // triangle only).
-  s.F = s.Qp.block(w, 0, r, w);
-  s.F.noalias() += 0.5 * s.Qp.bottomRightCorner(r, r) * s.E;
-  if (s.lowerOnlyCols() > 0) {  // r > 0 and w > 0; Qp's upper part of these columns was not formed
-    s.Qh.resize(w, w);
-    s.Qh.triangularView<Eigen::Lower>() = s.Qp.topLeftCorner(w, w);
-    s.Qh.triangularView<Eigen::Lower>() += s.E.transpose() * s.F;
-    s.Qh.triangularView<Eigen::Lower>() += s.F.transpose() * s.E;
-    // Above the diagonal only the block of x and u_N is read (the solves); P and the factors read the lower part.
-    s.Qh.topRightCorner(nx, nv) = s.Qh.bottomLeftCorner(nv, nx).transpose();
-  } else {
-    s.Qh = s.Qp.topLeftCorner(w, w);
+  Eigen::MatrixXd& F = cost_scratch_.F;
+  Eigen::MatrixXd& K = cost_scratch_.K;
+  const Eigen::MatrixXd& Qp = cost_scratch_.Qp;
+  F = Qp.block(w, 0, r, w);
+  F.noalias() += 0.5 * Qp.bottomRightCorner(r, r) * s.E;
+  // Where rows were eliminated Qh is formed in the scratch; otherwise it is Qp itself (w = n) or empty (w = 0).
+  const bool formed = s.lowerOnlyCols() > 0;  // r > 0 and w > 0; Qp's upper part of these columns was not formed
+  if (formed) {
+    Eigen::MatrixXd& Qw = cost_scratch_.Qh;
+    Qw.resize(w, w);
+    Qw.triangularView<Eigen::Lower>() = Qp.topLeftCorner(w, w);
+    Qw.triangularView<Eigen::Lower>() += s.E.transpose() * F;
+    Qw.triangularView<Eigen::Lower>() += F.transpose() * s.E;
   }
+  const Eigen::MatrixXd& Qh = formed ? cost_scratch_.Qh : Qp;
+  // The solves read only the blocks of x and u_N; above the diagonal that block is the mirror of the one below when
+  // Qh was formed in its lower triangle.
+  s.Qp_zB = Qp.rightCols(r);
+  s.Qp_Bz = Qp.bottomRows(r);
+  s.Qh_Nx = Qh.bottomLeftCorner(nv, nx);
+  if (formed) s.Qh_xN = s.Qh_Nx.transpose();
+  else s.Qh_xN = Qh.topRightCorner(nx, nv);
   s.use_eig = false;
-  s.K.resize(nv, nx);
+  K.resize(nv, nx);
   if (nv > 0) {
-    s.llt.compute(s.Qh.bottomRightCorner(nv, nv));
+    s.llt.compute(Qh.bottomRightCorner(nv, nv));
     if (s.llt.info() == Eigen::Success) {
       inertia_.positive += nv;
-      s.K = s.Qh.bottomLeftCorner(nv, nx);
-      solveInPlaceUnlessEmpty(s.llt.matrixL(), s.K);
+      K = s.Qh_Nx;
+      solveInPlaceUnlessEmpty(s.llt.matrixL(), K);
     } else {
       if (!opt_.full_inertia) return false;
       s.use_eig = true;
-      s.eig.compute(s.Qh.bottomRightCorner(nv, nv));
+      s.eig.compute(Qh.bottomRightCorner(nv, nv));
       const Eigen::VectorXd& d = s.eig.eigenvalues();
       const double scale = std::max(1.0, d.cwiseAbs().maxCoeff());
       for (int i = 0; i < nv; ++i) {
@@ -113,19 +123,19 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
   // rounding; mirroring would change the factors' bits).
   if ((nv > 0 && nx > 0) || s.lowerOnlyCols() > 0) {
     s.P.resize(nx, nx);
-    s.P.triangularView<Eigen::Lower>() = s.Qh.topLeftCorner(nx, nx);
+    s.P.triangularView<Eigen::Lower>() = Qh.topLeftCorner(nx, nx);
     if (nv > 0 && nx > 0) {
       if (!s.use_eig) {
-        s.P.selfadjointView<Eigen::Lower>().rankUpdate(s.K.transpose(), -1.0);
+        s.P.selfadjointView<Eigen::Lower>().rankUpdate(K.transpose(), -1.0);
       } else {
-        Eigen::MatrixXd t = s.Qh.bottomLeftCorner(nv, nx);
+        Eigen::MatrixXd t = s.Qh_Nx;
         s.solveNN(t);
-        s.P.triangularView<Eigen::Lower>() -= s.Qh.topRightCorner(nx, nv) * t;
+        s.P.triangularView<Eigen::Lower>() -= s.Qh_xN * t;
       }
     }
     s.P.triangularView<Eigen::StrictlyUpper>() = s.P.transpose();
   } else {
-    s.P = s.Qh.topLeftCorner(nx, nx);
+    s.P = Qh.topLeftCorner(nx, nx);
   }
   return true;
 }
@@ -166,13 +176,15 @@ bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
   Stage& s = st_[k];
   const int n = qp[k].nx + qp[k].nu;
   const int lower = s.lowerOnlyCols();
-  permuteSymmetric(qp[k].H, s.perm, s.nx, s.Qp, lower);
+  Eigen::MatrixXd& Qp = cost_scratch_.Qp;
+  permuteSymmetric(qp[k].H, s.perm, s.nx, Qp, lower);
   if (k < N) {
     const Stage& next = st_[k + 1];
-    s.PM.resize(next.nx, n);
-    denseTimesSparse(next.P, *s.M, s.PM, false, &s.perm);
-    s.PMt = s.PM.transpose();
-    denseTimesSparse(s.PMt, *s.M, s.Qp, true, &s.perm, lower);
+    Eigen::MatrixXd &PM = cost_scratch_.PM, &PMt = cost_scratch_.PMt;
+    PM.resize(next.nx, n);
+    denseTimesSparse(next.P, *s.M, PM, false, &s.perm);
+    PMt = PM.transpose();
+    denseTimesSparse(PMt, *s.M, Qp, true, &s.perm, lower);
   }
   return eliminateCost(s);
 }
@@ -228,7 +240,7 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
   v.dyn_pairs = 0;
   v.Cs = st_[0].Gamma;
   eliminateRows(v);
-  permuteSymmetric(st_[0].P, v.perm, 0, v.Qp);
+  permuteSymmetric(st_[0].P, v.perm, 0, cost_scratch_.Qp);
   if (!eliminateCost(v)) {
     failed_stage_ = N + 1;
     return Status::kWrongInertia;
@@ -283,13 +295,13 @@ void RiccatiSolver::backwardStage(const std::vector<StageQp>& qp, const std::vec
   v.qp.resize(n);
   for (int i = 0; i < n; ++i) v.qp[i] = v.q[s.perm[i]];
   v.g = v.qp;
-  v.g.noalias() += s.Qp.rightCols(r) * v.e;
+  v.g.noalias() += s.Qp_zB * v.e;
   v.qh = v.g.head(w);
   v.qh.noalias() += s.E.transpose() * v.g.tail(r);
   v.kff = -v.qh.tail(nv);
   s.solveNN(v.kff);
   v.p = v.qh.head(nx);
-  v.p.noalias() += s.Qh.topRightCorner(nx, nv) * v.kff;
+  v.p.noalias() += s.Qh_xN * v.kff;
 }
 
 // One stage of the forward pass: from the state ws.x and the multipliers of the rows this stage passed to the
@@ -299,7 +311,7 @@ void RiccatiSolver::stageForward(const Stage& s, RiccatiVectors::Stage& v, Ricca
   v.zp.resize(n);
   v.zp.head(nx) = ws.x;
   ws.t = v.qh.tail(nv);
-  ws.t.noalias() += s.Qh.bottomLeftCorner(nv, nx) * ws.x;
+  ws.t.noalias() += s.Qh_Nx * ws.x;
   s.solveNN(ws.t);
   v.zp.segment(nx, nv) = -ws.t;
   v.zp.tail(r) = v.e;
@@ -309,7 +321,7 @@ void RiccatiSolver::stageForward(const Stage& s, RiccatiVectors::Stage& v, Ricca
   // Multipliers of the stacked rows: the fixed control directions give the independent ones, the pending
   // rows' multipliers come from the previous stage; then back to the original rows.
   ws.gb = v.qp.tail(r);  // the gradient's u_B part: only it carries the multipliers
-  ws.gb.noalias() += s.Qp.bottomRows(r) * v.zp;
+  ws.gb.noalias() += s.Qp_Bz * v.zp;
   v.eta_t.setZero(s.m);
   v.eta_t.head(r) = -ws.gb;
   solveInPlaceUnlessEmpty(s.lu.packed().topLeftCorner(r, r).triangularView<Eigen::Upper>().transpose(),

@@ -116,6 +116,21 @@ class RiccatiSolver {
   std::unique_ptr<Parallel> par_;
   std::vector<StageRhs> rhs_;  // solve(qp, sol): the right-hand sides copied from qp
   RiccatiVectors ws_;          // and its vectors
+  // Scratch of the factorization that no later step reads, one set for all stages (the per-stage factors above are
+  // what the solves need). The row parts run on one thread at a time and the cost parts on one thread at a time,
+  // possibly a different one, so each part has its own.
+  struct RowScratch {
+    Eigen::MatrixXd X;  // the state part of the stacked rows in pivot order, row-transformed
+  };
+  struct CostScratch {
+    Eigen::MatrixXd PM, PMt;  // P_{k+1} M and its transpose
+    Eigen::MatrixXd F;        // Qp_BW + 1/2 Qp_BB E
+    Eigen::MatrixXd Qp;       // the stage cost plus the pulled-back cost-to-go (H + M' P M), in elimination order
+    Eigen::MatrixXd K;        // L^{-1} Qh_{N x}
+    Eigen::MatrixXd Qh;       // reduced Hessian on [x; u_N], lower triangle (where rows were eliminated)
+  };
+  RowScratch row_scratch_;
+  CostScratch cost_scratch_;
 };
 
 /// The per-stage factors (public only so that the implementation file can define it).
@@ -127,18 +142,15 @@ struct RiccatiSolver::Stage {
   Eigen::VectorXd row_scale;  // Cs = diag(row_scale) * [C; Gamma_next M]
   PivotedLu lu;               // of the control columns of Cs
   std::vector<int> perm;      // z order used below: [x, u_N (free directions), u_B (fixed by the rows)]
-  Eigen::MatrixXd Qp;         // the stage cost plus the pulled-back cost-to-go (H + M' P M), in that order
+  Eigen::MatrixXd Qp_zB, Qp_Bz;  // the columns and the rows of u_B of Qp (CostScratch), which the solves read
   Eigen::MatrixXd E;          // u_B = E [x; u_N] + e
-  Eigen::MatrixXd Qh;         // reduced Hessian on [x; u_N]; above the diagonal only its x-u_N block when rank > 0
+  Eigen::MatrixXd Qh_Nx, Qh_xN;  // the u_N-x and x-u_N blocks of the reduced Hessian Qh on [x; u_N]
   Eigen::LLT<Eigen::MatrixXd> llt;                          // of its u_N block
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig;       // fallback (full_inertia only)
   bool use_eig = false;
-  Eigen::MatrixXd K;          // L^{-1} Qh_{N x}
   Eigen::MatrixXd P;          // cost-to-go Hessian in x
   Eigen::MatrixXd Gamma;      // pending rows on x passed to the previous stage (kept ones)
   std::vector<int> kept;      // their positions among the dependent rows
-  // workspace
-  Eigen::MatrixXd PM, PMt, X, F;
   SparseColumns Msp;          // the dynamics M = [A B] (exact zeros dropped), unless the StageQp gives it
   const SparseColumns* M = nullptr;  // Msp or the StageQp's
   // helpers
