@@ -12,6 +12,7 @@
 
 #include "data/primitive_io.hpp"
 #include "support/cli_run.hpp"
+#include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 
@@ -19,12 +20,6 @@ namespace {
 
 using centaur_test::CliRun;
 using centaur_test::run;
-
-fs::path tempDir() {
-  const fs::path d = fs::temp_directory_path() / ("centaur_cli_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
 
 std::string writeFile(const fs::path& p, const std::string& text) {
   std::ofstream(p) << text;
@@ -44,35 +39,41 @@ void expectRefused(const std::string& args, const fs::path& out, const std::vect
 }  // namespace
 
 TEST(PlanCli, MalformedYamlIsBadInput) {
-  const fs::path d = tempDir(), out = d / "a.h5";
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "a.h5";
   const std::string cfg = writeFile(d / "bad.yaml", "horizon: {intervals: 30\ncost: [\n");
   expectRefused("plan squat-jump --config " + cfg + " --out " + out.string(), out, {"bad.yaml", "line"});
 }
 
 TEST(PlanCli, UnknownKeyIsBadInput) {
-  const fs::path d = tempDir(), out = d / "b.h5";
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "b.h5";
   const std::string cfg = writeFile(d / "typo.yaml", "horizon:\n  intervalz: 30\n");
   expectRefused("plan squat-jump --config " + cfg + " --out " + out.string(), out, {"typo.yaml", "horizon.intervalz"});
 }
 
 TEST(PlanCli, NegativeMassIsBadInput) {
-  const fs::path d = tempDir(), out = d / "c.h5";
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "c.h5";
   expectRefused("plan squat-jump --set model.waist_mass=-3 --out " + out.string(), out, {"model.waist_mass", "[0.001, 1000]"});
 }
 
 TEST(PlanCli, ReversedStepBoundsAreBadInput) {
-  const fs::path d = tempDir(), out = d / "d.h5";
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "d.h5";
   expectRefused("plan squat-jump --set horizon.dt_min=0.2 --set horizon.dt_max=0.05 --out " + out.string(), out,
                 {"horizon.dt_min", "dt_max"});
 }
 
 TEST(PlanCli, UnreachableTargetIsBadInput) {
-  const fs::path d = tempDir(), out = d / "e.h5";
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "e.h5";
   expectRefused("plan squat-jump --set target.height=5 --out " + out.string(), out, {"target.height", "unreachable"});
 }
 
 TEST(PlanCli, SolverStoppedEarlyExits3WithTheFileFlagged) {
-  const fs::path d = tempDir(), out = d / "f.h5";
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "f.h5";
   const CliRun r = run("plan squat-jump --quiet --json --set solver.max_iter=3 --out " + out.string());
   EXPECT_EQ(r.code, 3) << r.out;
   ASSERT_TRUE(fs::exists(out));
@@ -87,7 +88,8 @@ TEST(PlanCli, SolverStoppedEarlyExits3WithTheFileFlagged) {
 }
 
 TEST(PlanCli, RiccatiBackendStoppedEarlyExits3WithTheFileFlagged) {
-  const fs::path d = tempDir(), out = d / "g.h5";
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "g.h5";
   const CliRun r = run("plan squat-jump --quiet --set solver.backend=riccati --set solver.max_iter=3 --out " + out.string());
   EXPECT_EQ(r.code, 3) << r.out;
   ASSERT_TRUE(fs::exists(out));
@@ -95,7 +97,8 @@ TEST(PlanCli, RiccatiBackendStoppedEarlyExits3WithTheFileFlagged) {
 }
 
 TEST(PlanCli, WarmStartFromAMissingFileGroupOrOtherHorizonIsBadInput) {
-  const fs::path d = tempDir(), out = d / "h.h5", neighbour = d / "short.h5";
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "h.h5", neighbour = d / "short.h5";
   expectRefused("plan squat-jump --warm-start " + (d / "missing.h5").string() + " --out " + out.string(), out,
                 {"missing.h5"});
   // A neighbour planned on 12 intervals (stopped early: only its knots matter here).

@@ -16,6 +16,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <dirent.h>
 #include <filesystem>
@@ -200,6 +201,11 @@ TEST(SweepCli, SameResultsOnThreadsAndMpiAndAfterKill9) {
   const centaur_test::TempDir dir("sweep-cli");
   const std::string spec = dir.file("spec.yaml"), plans = dir.file("plans");
   std::ofstream(spec) << kSpec;
+  // The sweeps' temporary files (an MPI worker's private copy of the plans) go under the test's directory: a
+  // killed worker cannot remove its own, and the directory is removed with the test.
+  const std::string tmp = dir.file("tmp");
+  fs::create_directories(tmp);
+  ::setenv("TMPDIR", tmp.c_str(), 1);
   CliRun r = run("sweep " + spec + " --out " + plans + " --plan-only", false);
   ASSERT_EQ(r.code, 0) << r.out;
   ASSERT_TRUE(fs::exists(plans + "/primitives.h5"));
@@ -220,6 +226,10 @@ TEST(SweepCli, SameResultsOnThreadsAndMpiAndAfterKill9) {
   EXPECT_EQ(lastJson(r)["runs_now"], kRuns);
   expectSameResults(a, b);
   expectSameResults(a, c);
+  for (const auto& e : fs::directory_iterator(tmp)) {
+    EXPECT_EQ(e.path().filename().string().rfind("centaur-sweep-", 0), std::string::npos)
+        << "a worker left its temporary copy: " << e.path();
+  }
 
   // Killed in the middle, then started again: threads, then every process of an MPI job.
   const std::string d = dir.file("killed-threads"), e = dir.file("killed-mpi");
