@@ -1,14 +1,14 @@
 #include "sim/renderer.hpp"
 
-#include <GL/osmesa.h>
-
 #include <cstring>
 
 #include "common/error.hpp"
+#include "sim/osmesa_library.hpp"
 
 namespace centaur::sim {
 
 struct Renderer::Impl {
+  const OsMesaLibrary* osmesa = nullptr;
   OSMesaContext gl = nullptr;
   std::vector<unsigned char> gl_buffer;  // OSMesa's window buffer (unused: we draw offscreen)
   mjModel* model = nullptr;              // private copy (offscreen size may be raised)
@@ -23,11 +23,12 @@ Renderer::Renderer(const mjModel* model, int width, int height, const std::strin
                    const std::string& track_body, bool shadows, bool reflections)
     : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
   Impl& r = *impl_;
-  r.gl = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+  r.osmesa = &osMesaLibrary();
+  r.gl = r.osmesa->createContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
   if (!r.gl) throw RuntimeError("cannot create an OSMesa context for offscreen rendering");
   r.gl_buffer.resize(static_cast<std::size_t>(width) * height * 4);
-  if (!OSMesaMakeCurrent(r.gl, r.gl_buffer.data(), GL_UNSIGNED_BYTE, width, height)) {
-    OSMesaDestroyContext(r.gl);
+  if (!r.osmesa->makeCurrent(r.gl, r.gl_buffer.data(), GL_UNSIGNED_BYTE, width, height)) {
+    r.osmesa->destroyContext(r.gl);
     throw RuntimeError("cannot make the OSMesa context current");
   }
   r.model = mj_copyModel(nullptr, model);
@@ -66,12 +67,12 @@ Renderer::~Renderer() {
   mjr_freeContext(&impl_->context);
   mjv_freeScene(&impl_->scene);
   mj_deleteModel(impl_->model);
-  OSMesaDestroyContext(impl_->gl);
+  impl_->osmesa->destroyContext(impl_->gl);
 }
 
 const std::vector<std::uint8_t>& Renderer::render(mjData* data) {
   Impl& r = *impl_;
-  OSMesaMakeCurrent(r.gl, r.gl_buffer.data(), GL_UNSIGNED_BYTE, width_, height_);
+  r.osmesa->makeCurrent(r.gl, r.gl_buffer.data(), GL_UNSIGNED_BYTE, width_, height_);
   mjrRect viewport = {0, 0, width_, height_};
   mjv_updateScene(r.model, data, &r.option, nullptr, &r.camera, mjCAT_ALL, &r.scene);
   mjr_render(viewport, &r.scene, &r.context);
