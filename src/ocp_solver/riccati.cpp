@@ -121,7 +121,7 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
   // P from Qh's lower triangle, mirrored. Where no rows were eliminated and no controls are left to eliminate, P is
   // Qh's x block as formed: Qp is formed in full there, and P keeps both of its triangles (they may differ in
   // rounding; mirroring would change the factors' bits).
-  if ((nv > 0 && nx > 0) || s.lowerOnlyCols() > 0) {
+  if ((nv > 0 && nx > 0) || formed) {
     s.P.resize(nx, nx);
     s.P.triangularView<Eigen::Lower>() = Qh.topLeftCorner(nx, nx);
     if (nv > 0 && nx > 0) {

@@ -13,7 +13,7 @@ struct OsMesaLibrary {
 };
 
 /// The loaded library (global symbols, so that MuJoCo's GL loader finds the GL functions). Thread-safe; throws
-/// common::RuntimeError naming the library and the loader's message when it cannot be loaded.
+/// RuntimeError naming the library and the loader's message when it cannot be loaded.
 const OsMesaLibrary& osMesaLibrary();
 
 }  // namespace centaur::sim
