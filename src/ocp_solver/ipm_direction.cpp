@@ -42,7 +42,9 @@ bool Ipm::factorWithCorrection() {
     dc_.resize(m_);
     for (int r = 0; r < m_; ++r) dc_[r] = (ineq_[r] ? 1.0 / (sigma_s_[r] + delta_w_) : 0.0) + delta_c_;
     ++stats_.factorizations;
-    const KktStatus st = kkt_.factor(hess_in_use_ ? hess_in_use_ : hess_.data(), jac_.data(), dxdiag_, dc_);
+    const double* hess = hess_in_use_ ? hess_in_use_ : hess_.data();
+    const KktStatus st = attempt == 0 ? kkt_.factor(hess, jac_.data(), dxdiag_, dc_)
+                                      : kkt_.refactor(hess, jac_.data(), dxdiag_, dc_);
     if (st == KktStatus::kOk) {
       ok = true;
       break;

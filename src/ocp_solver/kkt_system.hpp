@@ -45,6 +45,13 @@ class KktSolver {
   /// penalty, d_c == 0 keeps it exact; see alwaysExactRows()).
   virtual KktStatus factor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
                            const Eigen::VectorXd& dc) = 0;
+  /// factor() again with the same Hessian and Jacobian (the same arrays, their values unchanged since the last
+  /// factor()) and new diagonals, e.g. the next trial of an inertia correction. A solver may keep what depends on
+  /// neither diagonal; the result is that of factor().
+  virtual KktStatus refactor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
+                             const Eigen::VectorXd& dc) {
+    return factor(hess, jac, dx, dc);
+  }
   /// Solve with the last factorization; dx has size n (zero for fixed variables), dy size m.
   virtual void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
                      Eigen::VectorXd& dy) = 0;

@@ -195,22 +195,26 @@ void RiccatiSolver::setParallel(bool on) {
 }
 
 RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
-                                            const std::function<void(int)>& before_stage) {
+                                            const std::function<void(int)>& before_stage, bool same_rows) {
   const int N = static_cast<int>(qp.size()) - 1;
+  if (static_cast<int>(st_.size()) != N + 2) same_rows = false;
   st_.resize(N + 2);
+  // A row part is kept only if it was computed from the same rows; they are computed from stage N down, so the kept
+  // ones are always stages N..j (and the initial state only after all of them).
+  if (!same_rows) row_part_valid_.assign(N + 2, 0);
   inertia_ = Inertia{};
   failed_stage_ = -1;
   factored_ = false;
   if (par_) {
-    // The worker runs the row parts (and before_stage) of stages N..0 ahead of the cost parts. After an early stop
-    // it still calls before_stage for every stage, as the sequential order would not (callers may rely on it).
+    // The worker runs before_stage and the row parts of stages N..0 ahead of the cost parts, until they stop early.
     Parallel& pl = *par_;
     pl.rows_done.store(N + 1, std::memory_order_relaxed);
     pl.stop.store(false, std::memory_order_relaxed);
     pl.worker.run([this, &qp, &before_stage, &pl, N] {
-      for (int k = N; k >= 0; --k) {
+      for (int k = N; k >= 0 && !pl.stop.load(std::memory_order_relaxed); --k) {
         if (before_stage) before_stage(k);
-        if (!pl.stop.load(std::memory_order_relaxed)) stageRows(qp, k);
+        if (!row_part_valid_[k]) stageRows(qp, k);
+        row_part_valid_[k] = 1;
         pl.rows_done.store(k, std::memory_order_release);
       }
     });
@@ -221,7 +225,8 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
       while (par_->rows_done.load(std::memory_order_acquire) > k) std::this_thread::yield();
     } else {
       if (before_stage) before_stage(k);
-      stageRows(qp, k);
+      if (!row_part_valid_[k]) stageRows(qp, k);
+      row_part_valid_[k] = 1;
     }
     ok = stageCost(qp, k);
     if (!ok) failed_stage_ = k;
@@ -233,13 +238,16 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
   if (!ok) return Status::kWrongInertia;
   // The initial state: a stage without state whose controls are x_0, cost P_0 and rows the pending ones of stage 0.
   Stage& v = st_[N + 1];
-  v.nx = 0;
-  v.nu = st_[0].nx;
-  v.m_own = 0;
-  v.m = static_cast<int>(st_[0].Gamma.rows());
-  v.dyn_pairs = 0;
-  v.Cs = st_[0].Gamma;
-  eliminateRows(v);
+  if (!row_part_valid_[N + 1]) {
+    v.nx = 0;
+    v.nu = st_[0].nx;
+    v.m_own = 0;
+    v.m = static_cast<int>(st_[0].Gamma.rows());
+    v.dyn_pairs = 0;
+    v.Cs = st_[0].Gamma;
+    eliminateRows(v);
+    row_part_valid_[N + 1] = 1;
+  }
   permuteSymmetric(st_[0].P, v.perm, 0, cost_scratch_.Qp);
   if (!eliminateCost(v)) {
     failed_stage_ = N + 1;

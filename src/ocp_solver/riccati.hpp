@@ -63,8 +63,11 @@ class RiccatiSolver {
   /// Factor the matrix part (H, A, B, C) of `qp`. kWrongInertia as soon as a reduced Hessian is not positive
   /// definite (unless full_inertia); kSingular if rows are dependent (the counts are still computed).
   /// before_stage(k), if given, is called before stage k's blocks are first read (stages N..0, in this order; on
-  /// the second thread when parallel, and then for every stage even after an early kWrongInertia).
-  Status factor(const std::vector<StageQp>& qp, const std::function<void(int)>& before_stage = {});
+  /// the second thread when parallel). After an early kWrongInertia the stages not reached yet may be skipped.
+  /// same_rows: C, A and B (and the stage sizes) are those of the previous factor(), only H changed (a retry of an
+  /// inertia correction): the row parts already computed are kept, which gives the bits of a full factorization.
+  Status factor(const std::vector<StageQp>& qp, const std::function<void(int)>& before_stage = {},
+                bool same_rows = false);
   /// Run each stage's row part (the rank split of its rows, which needs no cost) on a second thread, ahead of the
   /// cost parts (the reduced Hessians and the cost-to-go) on the calling one. The factors are bit-identical.
   void setParallel(bool on);
@@ -110,6 +113,7 @@ class RiccatiSolver {
 
   Options opt_;
   std::vector<Stage> st_;  // stages 0..N, then the initial-state elimination at index N + 1
+  std::vector<char> row_part_valid_;  // per entry of st_: its row part is that of the rows of the last factor()
   Inertia inertia_;
   int failed_stage_ = -1;
   bool factored_ = false;

@@ -45,15 +45,14 @@ void StageKktSolver::analyzeDynamics() {
   }
 }
 
-// Size the blocks of stage k and zero what fillStage accumulates into. A and B keep their size from one
+// Size the row blocks of stage k and zero what fillRows accumulates into. A and B keep their size from one
 // factorization to the next and are only ever written where the dynamics can be nonzero, so only those entries
-// are reset; C's rows are all written by fillStage.
-void StageKktSolver::resetStage(int k, int nxa, int m, int nxn) {
+// are reset; C's rows are all written by fillRows.
+void StageKktSolver::resetRows(int k, int nxa, int m, int nxn) {
   StageQp& q = qp_[k];
   const int n = nxa + nu_[k];
   q.nx = nxa;
   q.nu = nu_[k];
-  q.H.setZero(n, n);
   q.h.setZero(n);
   q.b.setZero(nxn);
   q.c.setZero(m);
@@ -226,7 +225,9 @@ void StageKktSolver::rowVector(const Row& row, const double* jac, const Eigen::V
 
 void StageKktSolver::setPipelined(bool on) { riccati_.setParallel(on); }
 
-void StageKktSolver::fillStage(int k) {
+// The blocks of stage k that depend on the Jacobian only: which rows are exact, the dynamics [A B] (and the scale
+// of each dynamics row), C.
+void StageKktSolver::fillRows(int k) {
   StageQp& q = qp_[k];
   Eigen::VectorXd& a = fill_a_;
   exact_rows_[k].clear();
@@ -235,15 +236,7 @@ void StageKktSolver::fillStage(int k) {
   const int m = static_cast<int>(fixed_cols_[k].size() + exact_rows_[k].size());
   const int nxa = nx_[k] + static_cast<int>(carried_[k].size());
   const int nxn = k < N_ ? nx_[k + 1] + static_cast<int>(carried_[k + 1].size()) : 0;
-  resetStage(k, nxa, m, nxn);
-  for (const HessEntry& h : hess_entries_[k]) {
-    q.H(h.r, h.c) += hess_[h.slot];
-    if (h.r != h.c) q.H(h.c, h.r) += hess_[h.slot];
-  }
-  for (int v : stage_vars_[k]) {
-    const int c = colOf(k, v);
-    q.H(c, c) += fixed_[v] ? 1.0 : dx_diag_[v];
-  }
+  resetRows(k, nxa, m, nxn);
   // Dynamics x_{k+1} = A z_k + b, scaled by the entry d on x_{k+1}; carried variables are copied.
   if (k < N_) {
     for (int j = 0; j < nx_[k + 1]; ++j) {
@@ -275,6 +268,24 @@ void StageKktSolver::fillStage(int k) {
     rowVector(rows_[r], jac_, nullptr, a, shift);
     q.C.row(i++) = a.transpose();
   }
+  rows_filled_[k] = 1;
+}
+
+// H of stage k (after fillRows): the Hessian entries, the diagonal, the penalty rows.
+void StageKktSolver::fillCost(int k) {
+  StageQp& q = qp_[k];
+  Eigen::VectorXd& a = fill_a_;
+  const int n = q.nx + q.nu;
+  q.H.setZero(n, n);
+  for (const HessEntry& h : hess_entries_[k]) {
+    q.H(h.r, h.c) += hess_[h.slot];
+    if (h.r != h.c) q.H(h.c, h.r) += hess_[h.slot];
+  }
+  for (int v : stage_vars_[k]) {
+    const int c = colOf(k, v);
+    q.H(c, c) += fixed_[v] ? 1.0 : dx_diag_[v];
+  }
+  double shift = 0.0;
   for (int r : penalty_rows_[k]) {
     const Row& row = rows_[r];
     const double w = 1.0 / dc_[r];
@@ -298,17 +309,31 @@ KktStatus StageKktSolver::factor(const double* hess, const double* jac, const Ei
   hess_ = hess;
   dx_diag_ = dx;
   dc_ = dc;
+  rows_filled_.assign(N_ + 1, 0);
+  return run(false);
+}
+
+// The exact rows are those with d_c == 0 (the dynamics always): the same as in the last factorization, the row
+// blocks and the recursion's row parts are kept.
+KktStatus StageKktSolver::refactor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
+                                   const Eigen::VectorXd& dc) {
+  bool same = hess == hess_ && jac == jac_ && dc.size() == dc_.size() && !rows_filled_.empty();
+  for (int r = 0; same && r < m_; ++r) same = dynamics_row_[r] || (dc[r] > 0.0) == (dc_[r] > 0.0);
+  if (!same) return factor(hess, jac, dx, dc);
+  dx_diag_ = dx;
+  dc_ = dc;
+  return run(true);
+}
+
+KktStatus StageKktSolver::run(bool same_rows) {
   kmax_ = -1.0;
-  RiccatiSolver::Status st;
-  if (riccati_.parallel()) {
-    // The second thread fills each stage just before its row part (every stage, also after an early stop: solve()
-    // and the next factor() need them all).
-    st = riccati_.factor(qp_, [this](int k) { fillStage(k); });
-  } else {
-    for (int k = N_; k >= 0; --k) fillStage(k);
-    st = riccati_.factor(qp_);
-  }
-  switch (st) {
+  // On the second thread when pipelined: each stage is filled just before its row part. Stages the recursion did
+  // not reach after an early stop are filled by the next factorization.
+  const auto fill = [this](int k) {
+    if (!rows_filled_[k]) fillRows(k);
+    fillCost(k);
+  };
+  switch (riccati_.factor(qp_, fill, same_rows)) {
     case RiccatiSolver::Status::kOk: return KktStatus::kOk;
     case RiccatiSolver::Status::kSingular: return KktStatus::kSingular;
     default: return KktStatus::kWrongInertia;

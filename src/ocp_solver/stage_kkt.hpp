@@ -44,6 +44,10 @@ class StageKktSolver final : public KktSolver {
 
   KktStatus factor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
                    const Eigen::VectorXd& dc) override;
+  /// Keeps the stage rows (C, the dynamics) and the recursion's row parts of the last factorization when the exact
+  /// rows are the same (d_c == 0 on the same rows); the bits of factor().
+  KktStatus refactor(const double* hess, const double* jac, const Eigen::VectorXd& dx,
+                     const Eigen::VectorXd& dc) override;
   /// Solves, then refines on the residual of the whole system (at most `max_refinement` extra solves) until the
   /// relative residual is below 1e-12: rows whose controls were nearly dependent are passed to the previous
   /// stage by the recursion, which leaves an error of the size of the pivot threshold.
@@ -86,7 +90,7 @@ class StageKktSolver final : public KktSolver {
   void analyzeRows(const SparsePattern& p, const std::vector<char>& equality);
   void analyzeCarried(const SparsePattern& p);
   void analyzeDynamics();
-  void resetStage(int k, int nxa, int m, int nxn);
+  void resetRows(int k, int nxa, int m, int nxn);
   void sparseDynamics(int k);
   /// The vectors of one solve (right-hand sides, solution, refinement): one for each solve of solveTwo().
   struct SolveWork {
@@ -100,7 +104,10 @@ class StageKktSolver final : public KktSolver {
   void rowVector(const Row& row, const double* jac, const Eigen::VectorXd* b, Eigen::VectorXd& a,
                  double& rhs_shift) const;
   /// Scatter the values of stage k into qp_[k] (and the dynamics scales of its rows); touches no other stage.
-  void fillStage(int k);
+  /// fillRows: what depends on the Jacobian and the set of exact rows only; fillCost: H.
+  void fillRows(int k);
+  void fillCost(int k);
+  KktStatus run(bool same_rows);
   /// Solve and refine (reads the factorization, writes w and the step only).
   void solveWith(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
                  Eigen::VectorXd& dy) const;
@@ -148,7 +155,8 @@ class StageKktSolver final : public KktSolver {
   std::vector<StageQp> qp_;
   RiccatiSolver riccati_;
   Eigen::VectorXd diag_;                      // dynamics row scale d (entry on x_{k+1})
-  Eigen::VectorXd fill_a_;                    // row scratch of fillStage()
+  Eigen::VectorXd fill_a_;                    // row scratch of fillRows() and fillCost()
+  std::vector<char> rows_filled_;             // per stage: fillRows() ran since the last factor()
 };
 
 }  // namespace centaur::ocp_solver

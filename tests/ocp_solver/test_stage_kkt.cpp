@@ -209,6 +209,46 @@ TEST(StageKkt, ARefactorizationGivesTheBitsOfAFreshSolver) {
   }
 }
 
+TEST(StageKkt, ARetryOfTheInertiaCorrectionGivesTheBitsOfAFactorization) {
+  // refactor() with the same Hessian and Jacobian and growing diagonals (the primal regularization and the slack
+  // terms of the inequality rows, as the inertia correction tries them) keeps the rows of the last factorization,
+  // also after it stopped early; with a dual regularization on the equality rows, which changes the exact rows, it
+  // factors anew. Either way: the status, inertia and step of factor() on a fresh solver, to the last bit.
+  int early_then_kept = 0, solved = 0;
+  for (unsigned seed = 0; seed < 40; ++seed) {
+    Problem q = randomProblem(seed, false, 0.0);
+    StageKktSolver retry(q.p, q.layout, q.fixed, q.equality);
+    retry.setPipelined(seed % 2 == 1);
+    bool stopped = retry.factor(q.hess.data(), q.jac.data(), q.dx, q.dc) == KktStatus::kWrongInertia;
+    const Eigen::VectorXd dx0 = q.dx, dc0 = q.dc;
+    for (const double delta : {1e-2, 1.0, 8.0, 64.0, -1.0}) {
+      if (delta < 0.0) {  // a dual regularization: the equality rows become penalties
+        for (int r = 0; r < q.dc.size(); ++r)
+          if (q.equality[r]) q.dc[r] = 1e-3;
+      } else {
+        q.dx = dx0.array() + delta;
+        for (int r = 0; r < q.dc.size(); ++r)
+          if (!q.equality[r]) q.dc[r] = 1.0 / (1.0 / dc0[r] + delta);
+      }
+      StageKktSolver fresh(q.p, q.layout, q.fixed, q.equality);
+      const KktStatus a = retry.refactor(q.hess.data(), q.jac.data(), q.dx, q.dc);
+      ASSERT_EQ(a, fresh.factor(q.hess.data(), q.jac.data(), q.dx, q.dc)) << "seed " << seed << " delta " << delta;
+      EXPECT_EQ(retry.inertia().positive, fresh.inertia().positive) << "seed " << seed;
+      early_then_kept += stopped && delta > 0.0;
+      stopped = a == KktStatus::kWrongInertia;
+      if (stopped) continue;
+      Eigen::VectorXd x1, y1, x2, y2;
+      retry.solve(q.rx, q.rc, x1, y1);
+      fresh.solve(q.rx, q.rc, x2, y2);
+      ASSERT_EQ(x1, x2) << "seed " << seed << " delta " << delta;
+      ASSERT_EQ(y1, y2) << "seed " << seed << " delta " << delta;
+      ++solved;
+    }
+  }
+  EXPECT_GT(early_then_kept, 5);
+  EXPECT_GT(solved, 80);
+}
+
 // The relative residual of the system for (dx, dy), written as plain loops over the triplets: r = rhs - K [dx; dy]
 // (the fixed variables' rows zero), divided by max(|rhs|, |K| |[dx; dy]|).
 double plainResidual(const Problem& q, const std::vector<char>& exact_rows, const Eigen::VectorXd& dx,
