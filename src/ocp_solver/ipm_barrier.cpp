@@ -210,7 +210,11 @@ bool Ipm::adaptiveDirection() {
   // the bracket is narrower than kSectionTol relative to its upper end or after kGoldenSteps sections.
   const double sigma_lo = std::max(kSigmaMin, kMuMin / avg), sigma_up = std::max(sigma_lo, std::min(kSigmaMax, mu_max_ / avg));
   const QualityBase base = qualityBase();
-  auto q = [&](double sg) { return qualityFunction(aff_, cen_, sg, kTauMin, base); };
+  // The fraction to the boundary of the free mode, as Ipopt's: from the NLP error, not from mu (which the quality
+  // function may set to its floor while the iterate is still far from optimal; 1 - mu would then let a step go to
+  // within mu of the bounds). The quality function uses it too.
+  const double tau = std::max(kTauMin, 1.0 - optimalityError(0.0, false));
+  auto q = [&](double sg) { return qualityFunction(aff_, cen_, sg, tau, base); };
   double sigma;
   if (sigma_up <= 1.0 || sigma_lo >= 1.0) {
     sigma = goldenSection(q, sigma_lo, sigma_up);
@@ -220,7 +224,7 @@ bool Ipm::adaptiveDirection() {
   }
   mu_ = std::clamp(sigma * avg, kMuMin, mu_max_);
   sigma = mu_ / avg;
-  tau_ = std::max(kTauMin, 1.0 - mu_);
+  tau_ = tau;
   combine(aff_, cen_, sigma, d_);
   filter_.reset(filter_.thetaMax());  // the barrier problem changed
   return d_.x.allFinite() && d_.y.allFinite();

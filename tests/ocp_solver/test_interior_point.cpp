@@ -229,6 +229,49 @@ TEST(InteriorPoint, NonconvexEqualityNeedsAndGetsInertiaCorrection) {
   EXPECT_GT(r.stats.factorizations, r.stats.iterations + 1);  // some iterations were regularized
 }
 
+TEST(InteriorPoint, FreeModeKeepsOnePercentOffTheBoundsWhileFarFromOptimal) {
+  // min 1000 (x0 + x1)  s.t. x0 - x1 = 0, x >= 0, from (1, 1) with bound multipliers 1: the NLP error starts at
+  // ~1000 (dual infeasibility), the affine-scaling step goes straight to the bounds and the quality function picks
+  // the smallest barrier parameter it may (sigma 1e-6). As in Ipopt, the fraction to the boundary of the free mode
+  // is max(0.99, 1 - NLP error), not 1 - mu: the first step keeps 1 % of the distance to the bounds (with 1 - mu it
+  // went to 1e-6 of it).
+  LambdaNlp q;
+  q.n = 2;
+  q.m = 1;
+  q.xl = Eigen::Vector2d(0, 0);
+  q.xu = Eigen::Vector2d(kInf, kInf);
+  q.gl = Eigen::VectorXd::Zero(1);
+  q.gu = Eigen::VectorXd::Zero(1);
+  q.x0 = Eigen::Vector2d(1.0, 1.0);
+  q.f = [](const Eigen::VectorXd& x) { return 1e3 * (x[0] + x[1]); };
+  q.g = [](const Eigen::VectorXd& x) { return Eigen::VectorXd::Constant(1, x[0] - x[1]); };
+  q.grad = [](const Eigen::VectorXd&) { return Eigen::Vector2d(1e3, 1e3); };
+  q.jac = [](const Eigen::VectorXd&) {
+    Eigen::MatrixXd J(1, 2);
+    J << 1, -1;
+    return J;
+  };
+  q.hess = [](const Eigen::VectorXd&, double, const Eigen::VectorXd&) { return Eigen::MatrixXd::Zero(2, 2).eval(); };
+  std::vector<Eigen::VectorXd> points;  // where the derivatives were evaluated: the start, then every iterate
+  auto grad = q.grad;
+  q.grad = [&points, grad](const Eigen::VectorXd& x) {
+    points.push_back(x);
+    return grad(x);
+  };
+  q.finalize();
+  IpmOptions o;
+  o.max_iter = 2;
+  const IpmResult r = solve(q, o);
+  EXPECT_EQ(r.status, IpmStatus::kMaxIterations);
+  std::size_t first = 0;  // the first iterate after the start
+  while (first < points.size() && points[first] == q.x0) ++first;
+  ASSERT_LT(first, points.size());
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_GE(points[first][i], 0.01 * q.x0[i] - 1e-8) << "x" << i;  // the bounds are relaxed by 1e-8
+    EXPECT_LT(points[first][i], 0.02 * q.x0[i]) << "x" << i;  // and it does go that far
+  }
+}
+
 TEST(InteriorPoint, InfeasibleProblemEndsAsAStatus) {
   // x0^2 + x1^2 = -1 has no solution.
   LambdaNlp q;
