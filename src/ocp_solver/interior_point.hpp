@@ -4,9 +4,9 @@
 // equations with the bound multipliers and slacks eliminated (the remaining symmetric system goes to a
 // KktSolver, e.g. the stage-wise Riccati one), inertia correction by a primal regularization delta_w (and a
 // dual one delta_c for dependent rows) until the step is a descent direction, fraction-to-the-boundary rule,
-// filter line search with second-order corrections, and a barrier parameter that is either decreased
-// monotonically (Fiacco-McCormick) or chosen each iteration by Mehrotra's predictor-corrector rule with the
-// monotone mode as fallback. Termination tests as Ipopt's (tol on the scaled optimality error; constraint
+// filter line search with second-order corrections and Ipopt's watchdog, and a barrier parameter that is either
+// decreased monotonically (Fiacco-McCormick) or chosen each iteration by Mehrotra's predictor-corrector rule with
+// the monotone mode as fallback. Termination tests as Ipopt's (tol on the scaled optimality error; constraint
 // violation, dual infeasibility and complementarity on the unscaled ones).
 #include <Eigen/Core>
 
@@ -67,6 +67,8 @@ struct IpmStats {
   int solves = 0;               ///< KKT solves (steps, corrector, second-order corrections, refinement excluded)
   int restoration_iterations = 0;
   int mode_switches = 0;        ///< adaptive -> monotone
+  int watchdog_starts = 0;      ///< after 10 shortened steps in a row: full steps measured from a stored point
+  int watchdog_returns = 0;     ///< ... that did not pay off: back to the stored point
   double time_total = 0.0;      ///< [s] wall
   double time_derivatives = 0.0;
   double time_functions = 0.0;  ///< objective and constraints (line search)

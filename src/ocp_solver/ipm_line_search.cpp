@@ -1,5 +1,6 @@
 // Step acceptance of the interior-point method: fraction to the boundary, Ipopt's filter line search with
-// second-order corrections, and a feasibility restoration when the step size falls below its minimum.
+// second-order corrections and its watchdog, and a feasibility restoration when the step size falls below its
+// minimum.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,6 +13,7 @@ namespace {
 constexpr double kGammaTheta = 1e-5, kGammaPhi = 1e-8, kDelta = 1.0, kSTheta = 1.1, kSPhi = 2.3, kEtaPhi = 1e-8;
 constexpr double kGammaAlpha = 0.05, kKappaSoc = 0.99;
 constexpr int kMaxSoc = 4;
+constexpr int kWatchdogTrigger = 10, kWatchdogTrials = 3;  // Ipopt's watchdog_shortened_iter_trigger, _trial_iter_max
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 }  // namespace
 
@@ -100,7 +102,38 @@ bool Ipm::secondOrderCorrection(double alpha, double gpd, double theta0, double 
   return false;
 }
 
+bool Ipm::backtrack(double alpha, double a_dual, double gpd, double theta0, double phi0, bool allow_soc) {
+  double a_min = kGammaTheta;
+  if (gpd < 0.0) {
+    a_min = std::min(kGammaTheta, kGammaPhi * theta0 / -gpd);
+    if (theta0 <= theta_min_) a_min = std::min(a_min, kDelta * std::pow(theta0, kSTheta) / std::pow(-gpd, kSPhi));
+  }
+  a_min *= kGammaAlpha;
+  for (;;) {
+    if (trialPoint(d_, alpha)) {
+      const double th = theta(g_trial_, s_trial_);
+      const int acc = acceptance(th, barrierObjective(f_trial_, x_trial_, s_trial_), alpha, gpd, theta0, phi0);
+      if (acc) {
+        if (acc == 2) filter_.add((1.0 - kGammaTheta) * theta0, phi0 - kGammaPhi * theta0);
+        acceptStep(d_, alpha, a_dual);
+        ls_type_ = acc == 1 ? 'f' : 'h';
+        return true;
+      }
+      if (allow_soc && ls_trials_ == 0 && th >= theta0 && secondOrderCorrection(alpha, gpd, theta0, phi0, th))
+        return true;
+    }
+    ++ls_trials_;
+    alpha *= 0.5;
+    if (alpha < a_min) return false;
+  }
+}
+
 bool Ipm::lineSearch() {
+  if (mu_ != wd_.mu) {  // a new barrier problem: the watchdog starts over
+    wd_.active = false;
+    wd_.shortened = 0;
+    wd_.mu = mu_;
+  }
   Vec gx, gs;
   barrierGradient(mu_, gx, gs);
   const double gpd = gx.dot(d_.x) + gs.dot(d_.s);
@@ -114,35 +147,76 @@ bool Ipm::lineSearch() {
   for (int i = 0; i < n_; ++i) rel = std::max(rel, std::abs(d_.x[i]) / (1.0 + std::abs(x_[i])));
   for (int r = 0; r < m_; ++r) rel = std::max(rel, std::abs(d_.s[r]) / (1.0 + std::abs(s_[r])));
   if (rel < 10.0 * kEps) {
+    if (wd_.active) {  // as Ipopt: back to where the watchdog started, and search from there
+      stopWatchdog();
+      const bool ok = backtrack(wd_.alpha_test, maxDualStep(d_, tau_), wd_.gpd, wd_.theta, wd_.phi, false);
+      if (ok) wd_.shortened = ls_trials_ > 0 ? 1 : 0;
+      return ok;
+    }
     if (!trialPoint(d_, a_max)) return false;
     acceptStep(d_, a_max, a_dual);
     tiny_step_ = true;
     ls_type_ = 't';
     return true;
   }
-  double a_min = kGammaTheta;
-  if (gpd < 0.0) {
-    a_min = std::min(kGammaTheta, kGammaPhi * theta0 / -gpd);
-    if (theta0 <= theta_min_) a_min = std::min(a_min, kDelta * std::pow(theta0, kSTheta) / std::pow(-gpd, kSPhi));
+  if (!wd_.active && wd_.shortened >= kWatchdogTrigger) {
+    wd_ = Watchdog{true, 0, 0, mu_, x_, s_, y_, zl_, zu_, vl_, vu_, g_, rp_, f_, theta0, phi0, gpd, a_max, d_};
+    ++stats_.watchdog_starts;
   }
-  a_min *= kGammaAlpha;
-  double alpha = a_max;
-  for (;;) {
-    if (trialPoint(d_, alpha)) {
-      const double th = theta(g_trial_, s_trial_);
-      const int acc = acceptance(th, barrierObjective(f_trial_, x_trial_, s_trial_), alpha, gpd, theta0, phi0);
-      if (acc) {
-        if (acc == 2) filter_.add((1.0 - kGammaTheta) * theta0, phi0 - kGammaPhi * theta0);
-        acceptStep(d_, alpha, a_dual);
-        ls_type_ = acc == 1 ? 'f' : 'h';
-        return true;
-      }
-      if (ls_trials_ == 0 && th >= theta0 && secondOrderCorrection(alpha, gpd, theta0, phi0, th)) return true;
+  if (wd_.active) return watchdogStep(a_max, a_dual);
+  const bool ok = backtrack(a_max, a_dual, gpd, theta0, phi0, true);
+  if (ok) wd_.shortened = ls_trials_ > 0 ? wd_.shortened + 1 : 0;
+  return ok;
+}
+
+// One watchdog iteration: the full step, acceptable against the point where the watchdog started (Ipopt tests it
+// with that point's step size for the Armijo condition); otherwise taken anyway, up to kWatchdogTrials times, and
+// then the method returns to that point and backtracks along its direction (from half its first step).
+bool Ipm::watchdogStep(double a_max, double a_dual) {
+  const bool evaluated = trialPoint(d_, a_max);
+  if (evaluated) {
+    const double th = theta(g_trial_, s_trial_);
+    const int acc = acceptance(th, barrierObjective(f_trial_, x_trial_, s_trial_), wd_.alpha_test, wd_.gpd,
+                               wd_.theta, wd_.phi);
+    if (acc) {
+      if (acc == 2) filter_.add((1.0 - kGammaTheta) * wd_.theta, wd_.phi - kGammaPhi * wd_.theta);
+      acceptStep(d_, a_max, a_dual);
+      wd_.active = false;
+      wd_.shortened = 0;
+      ls_type_ = 'W';
+      return true;
     }
-    ++ls_trials_;
-    alpha *= 0.5;
-    if (alpha < a_min) return false;
   }
+  if (evaluated && ++wd_.trials <= kWatchdogTrials) {
+    acceptStep(d_, a_max, a_dual);
+    ls_type_ = 'w';
+    return true;
+  }
+  stopWatchdog();
+  ls_trials_ = 1;
+  const bool ok = backtrack(0.5 * wd_.alpha_test, maxDualStep(d_, tau_), wd_.gpd, wd_.theta, wd_.phi, false);
+  if (ok) wd_.shortened = ls_trials_ > 1 ? 1 : 0;
+  return ok;
+}
+
+// Back to the point where the watchdog started, with its direction (and its derivatives, which the next
+// iteration or a restoration reads).
+void Ipm::stopWatchdog() {
+  ++stats_.watchdog_returns;
+  wd_.active = false;
+  wd_.shortened = 0;
+  x_ = wd_.x;
+  s_ = wd_.s;
+  y_ = wd_.y;
+  zl_ = wd_.zl;
+  zu_ = wd_.zu;
+  vl_ = wd_.vl;
+  vu_ = wd_.vu;
+  f_ = wd_.f;
+  g_ = wd_.g;
+  rp_ = wd_.rp;
+  d_ = wd_.d;
+  evalDerivatives();
 }
 
 // Feasibility restoration: minimum-norm steps towards the linearized constraints,

@@ -76,6 +76,12 @@ class Ipm {
   int acceptance(double theta_t, double phi_t, double alpha, double gpd, double theta0, double phi0) const;
   bool trialPoint(const Direction& d, double alpha);  // x_trial_, s_trial_, f_trial_, g_trial_
   bool secondOrderCorrection(double alpha, double gpd, double theta0, double phi0, double theta_t);
+  /// Backtracking from alpha on d_ against the references of the current point; false below the minimum step.
+  bool backtrack(double alpha, double a_dual, double gpd, double theta0, double phi0, bool allow_soc);
+  /// Ipopt's watchdog: after kWatchdogTrigger consecutive shortened steps, full steps for up to kWatchdogTrials
+  /// iterations measured against the point where it started; if none is acceptable there, back to that point.
+  bool watchdogStep(double a_max, double a_dual);
+  void stopWatchdog();
   void acceptStep(const Direction& d, double alpha_primal, double alpha_dual);
   bool restoration();
   void printIteration(char mode) const;
@@ -119,6 +125,15 @@ class Ipm {
   int ls_trials_ = 0;
   Vec x_trial_, s_trial_, g_trial_;
   double f_trial_ = 0.0;
+  struct Watchdog {
+    bool active = false;
+    int shortened = 0;  // consecutive accepted steps shorter than their first trial
+    int trials = 0;     // full steps taken since the watchdog started
+    double mu = -1.0;   // the barrier parameter it counts for (a new one resets it)
+    Vec x, s, y, zl, zu, vl, vu, g, rp;  // the point where it started, its direction and line-search references
+    double f = 0.0, theta = 0.0, phi = 0.0, gpd = 0.0, alpha_test = 1.0;
+    Direction d;
+  } wd_;
 
   int acceptable_count_ = 0;
   // adaptive barrier: free mode (mu chosen each iteration by the quality function), fixed mode (monotone)

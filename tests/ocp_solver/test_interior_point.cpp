@@ -272,6 +272,42 @@ TEST(InteriorPoint, FreeModeKeepsOnePercentOffTheBoundsWhileFarFromOptimal) {
   }
 }
 
+TEST(InteriorPoint, TheWatchdogTakesFullStepsAfterTenShortenedOnesAndReturnsWhenTheyFail) {
+  // min (x - 20)^2 / 2 from x = 0, where the functions cannot be evaluated more than 1 beyond the last iterate (a
+  // domain that grows as the method goes, NaN beyond it): the line search cuts every Newton step (to 20) to at
+  // most 1. After ten such steps Ipopt's watchdog tries the full step from there; it cannot be evaluated, so the
+  // method returns to the stored point and backtracks as before. It still reaches the minimum. A loose inequality
+  // row (x in [-1e9, 1e9]) and a small fixed barrier parameter keep the barrier problem the same throughout.
+  LambdaNlp q;
+  q.n = 1;
+  q.m = 1;
+  q.xl = Eigen::VectorXd::Constant(1, -kInf);
+  q.xu = Eigen::VectorXd::Constant(1, kInf);
+  q.gl = Eigen::VectorXd::Constant(1, -1e9);
+  q.gu = Eigen::VectorXd::Constant(1, 1e9);
+  q.x0 = Eigen::VectorXd::Zero(1);
+  double reach = 1.0;  // the domain: x <= reach, one beyond the last point whose derivatives were evaluated
+  q.f = [&reach](const Eigen::VectorXd& x) {
+    return x[0] <= reach ? 0.5 * (x[0] - 20.0) * (x[0] - 20.0) : std::numeric_limits<double>::quiet_NaN();
+  };
+  q.g = [](const Eigen::VectorXd& x) { return x; };
+  q.grad = [&reach](const Eigen::VectorXd& x) {
+    reach = x[0] + 1.0;
+    return Eigen::VectorXd::Constant(1, x[0] - 20.0);
+  };
+  q.jac = [](const Eigen::VectorXd&) { return Eigen::MatrixXd::Ones(1, 1); };
+  q.hess = [](const Eigen::VectorXd&, double s, const Eigen::VectorXd&) { return Eigen::MatrixXd::Constant(1, 1, s); };
+  q.finalize();
+  IpmOptions o;
+  o.mu_strategy = "monotone";
+  o.mu_init = 1e-3;
+  const IpmResult r = solve(q, o);
+  ASSERT_EQ(r.status, IpmStatus::kSolved);
+  EXPECT_NEAR(r.x[0], 20.0, 1e-6);
+  EXPECT_GE(r.stats.watchdog_starts, 1);
+  EXPECT_GE(r.stats.watchdog_returns, 1);
+}
+
 TEST(InteriorPoint, InfeasibleProblemEndsAsAStatus) {
   // x0^2 + x1^2 = -1 has no solution.
   LambdaNlp q;
