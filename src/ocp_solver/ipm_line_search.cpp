@@ -224,6 +224,7 @@ void Ipm::stopWatchdog() {
 // (zeta = sqrt(mu), D_R = 1 / max(1, |x_R|)) with a backtracking on theta, until theta has dropped to 0.9 of
 // its value at the start and the point is acceptable to the filter of the original problem.
 bool Ipm::restoration() {
+  wd_.shortened = 0;  // as Ipopt's: the watchdog counts the shortened steps after a restoration afresh
   const double theta_r = theta(g_, s_), zeta = std::sqrt(mu_);
   const Vec x_r = x_;
   const Vec grad_saved = grad_, y_saved = y_;

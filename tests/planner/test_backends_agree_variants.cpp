@@ -7,9 +7,10 @@
 //     within 1 mm; durations within 3 ms and forces within 10 N, because the objective fixes the step sizes only
 //     to ~1e-4 s at tol 1e-8 -- a flat valley along the phase durations -- so the sample grids shift by a few
 //     samples and quickly changing forces differ there), or
-//   - the variant is one where they stop at different local optima (named in the table below, docs/planner.md),
-//     and each point is a KKT point: the other backend, warm-started there, stays (objective within 1e-6
-//     relative), except where the table says that riccati leaves Ipopt's point for a lower one.
+//   - the variant is one where they stop at different points (named in the table below, docs/planner.md):
+//     different local optima, or points of the flat valley at the same objective whose primitives differ beyond
+//     these bounds; each point is a KKT point: the other backend, warm-started there, stays (objective within
+//     1e-6 relative), except where the table says that riccati leaves Ipopt's point for a lower one.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,7 +29,8 @@ namespace {
 
 enum class Expect {
   kSame,            // the same local optimum
-  kBothStay,        // different KKT points: each backend, warm-started at the other's point, stays there
+  kBothStay,        // different KKT points (local optima, or points of a flat valley at the same objective whose
+                    // primitives differ): each backend, warm-started at the other's point, stays there
   kRiccatiDescends, // Ipopt stays at riccati's point; riccati, warm-started at Ipopt's, leaves it for a lower one
 };
 
@@ -70,6 +72,7 @@ void expectKktPointsOfTheOther(const Ocp& ocp, const SolverSettings& s, const So
   std::printf("  riccati from Ipopt's point %.10g (%d it), Ipopt from riccati's point %.10g (%d it)\n",
               ri_from_ip.info.cost, ri_from_ip.info.iterations, ip_from_ri.info.cost, ip_from_ri.info.iterations);
   if (expect == Expect::kRiccatiDescends && ri_from_ip.info.status == "solved_acceptable") {
+    // the descent from Ipopt's point may end at Ipopt's acceptable level (15 iterations within acceptable_tol)
     EXPECT_LT(ri_from_ip.info.max_constraint_violation, s.constr_viol_tol);
   } else {
     expectConverged(ri_from_ip, "riccati warm-started at Ipopt's optimum", s.constr_viol_tol);
@@ -78,7 +81,7 @@ void expectKktPointsOfTheOther(const Ocp& ocp, const SolverSettings& s, const So
   EXPECT_LT(relDiff(ip_from_ri.info.cost, ri.info.cost), 1e-6) << ip_from_ri.info.cost << " vs " << ri.info.cost;
   if (expect == Expect::kBothStay) {
     EXPECT_LT(relDiff(ri_from_ip.info.cost, ip.info.cost), 1e-6) << ri_from_ip.info.cost << " vs " << ip.info.cost;
-  } else {  // the descent may end at Ipopt's acceptable level (15 iterations within acceptable_tol)
+  } else {
     EXPECT_LT(ri_from_ip.info.cost, ip.info.cost * (1.0 - 1e-6)) << "riccati was expected to find a lower point";
   }
 }
