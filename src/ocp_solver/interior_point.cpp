@@ -334,6 +334,7 @@ IpmResult Ipm::run() {
     double dual = 0.0, primal = 0.0, compl_err = 0.0;
     optimalityError(0.0, true, &dual, &primal, &compl_err);
     const double err = optimalityError(0.0, false);
+    nlp_error_ = err;
     printIteration(' ');
     if (err <= opt_.tol && dual <= opt_.dual_inf_tol && primal <= opt_.constr_viol_tol && compl_err <= opt_.compl_inf_tol) {
       res.status = IpmStatus::kSolved;

@@ -213,7 +213,7 @@ bool Ipm::adaptiveDirection() {
   // The fraction to the boundary of the free mode, as Ipopt's: from the NLP error, not from mu (which the quality
   // function may set to its floor while the iterate is still far from optimal; 1 - mu would then let a step go to
   // within mu of the bounds). The quality function uses it too.
-  const double tau = std::max(kTauMin, 1.0 - optimalityError(0.0, false));
+  const double tau = std::max(kTauMin, 1.0 - nlp_error_);
   auto q = [&](double sg) { return qualityFunction(aff_, cen_, sg, tau, base); };
   double sigma;
   if (sigma_up <= 1.0 || sigma_lo >= 1.0) {

@@ -105,6 +105,7 @@ class Ipm {
   Vec g_, grad_, rp_;
   std::vector<double> jac_, hess_, zero_hess_;
   double mu_ = 0.1, tau_ = 0.99;
+  double nlp_error_ = 0.0;  // the scaled NLP error of the current iterate (computed once per iteration by run())
   bool tiny_step_ = false;
 
   // direction and linear algebra
