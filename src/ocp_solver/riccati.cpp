@@ -194,6 +194,17 @@ void RiccatiSolver::setParallel(bool on) {
   if (!on) par_.reset();
 }
 
+void RiccatiSolver::runPair(const std::function<void()>& mine, const std::function<void()>& other) const {
+  if (!par_) {
+    mine();
+    other();
+    return;
+  }
+  par_->worker.run(other);
+  mine();
+  par_->worker.wait();
+}
+
 RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
                                             const std::function<void(int)>& before_stage, bool same_rows) {
   const int N = static_cast<int>(qp.size()) - 1;

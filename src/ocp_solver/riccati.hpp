@@ -72,6 +72,9 @@ class RiccatiSolver {
   /// cost parts (the reduced Hessians and the cost-to-go) on the calling one. The factors are bit-identical.
   void setParallel(bool on);
   bool parallel() const { return par_ != nullptr; }
+  /// Run `mine` on the calling thread and `other` on the second one (when parallel; otherwise one after the
+  /// other), and return when both have finished. For work between factorizations, e.g. two solves.
+  void runPair(const std::function<void()>& mine, const std::function<void()>& other) const;
   /// Solve with the right-hand sides (h, b, c) of `qp` (same matrices as the last factor()). Allowed after
   /// kOk or kSingular (dependent rows get zero multipliers) and after kWrongInertia with full_inertia.
   void solve(const std::vector<StageQp>& qp, std::vector<StageSolution>& sol);

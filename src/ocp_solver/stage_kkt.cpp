@@ -402,6 +402,11 @@ void StageKktSolver::solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc,
 void StageKktSolver::solveTwo(const KktSolve& a, const KktSolve& b) {
   if (kmax_ < 0.0) kmax_ = largestEntry();
   SolveWork &wa = work_[0], &wb = work_[1];
+  if (riccati_.parallel()) {
+    riccati_.runPair([&] { solveWith(wa, a.rx, a.rc, a.dx, a.dy); }, [&] { solveWith(wb, b.rx, b.rc, b.dx, b.dy); });
+    last_residual_ = wb.residual;
+    return;
+  }
   stageRhs(wa, a.rx, a.rc);
   stageRhs(wb, b.rx, b.rc);
   riccati_.solveTwo(qp_, {wa.rhs, wa.sol, wa.vec}, {wb.rhs, wb.sol, wb.vec});

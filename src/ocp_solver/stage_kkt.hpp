@@ -52,7 +52,9 @@ class StageKktSolver final : public KktSolver {
   /// relative residual is below 1e-12: rows whose controls were nearly dependent are passed to the previous
   /// stage by the recursion, which leaves an error of the size of the pivot threshold.
   void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy) override;
-  /// The two recursions run in one pass over the factors (RiccatiSolver::solveTwo); refined one after the other.
+  /// Pipelined (setPipelined): each solve with its refinement on its own thread. Otherwise the two recursions run
+  /// in one pass over the factors (RiccatiSolver::solveTwo) and are refined one after the other. Either way the
+  /// results are those of solve(a) and solve(b), bit for bit.
   void solveTwo(const KktSolve& a, const KktSolve& b) override;
   /// Fill the stage blocks and run the row part of each stage of the recursion on a second thread, ahead of the
   /// cost parts (RiccatiSolver::setParallel): the scattering of the sparse values and the rank splits of the rows

@@ -148,14 +148,16 @@ TEST(StageKkt, PipelinedFillingGivesBitIdenticalFactorsAndSteps) {
   EXPECT_GT(early_stops, 0);
 }
 
-TEST(StageKkt, TwoSolvesInOnePassGiveTheBitsOfOneAfterTheOther) {
-  // solveTwo() runs the two recursions stage by stage in one pass over the factors, each with its own vectors: each
-  // result is bit-identical to a solve of its own on another solver, over repeated factorizations (the vectors are
-  // reused), with and without a dual regularization, and with the pipelined factorization.
+TEST(StageKkt, TwoSolvesInOnePassOrOnTwoThreadsGiveTheBitsOfOneAfterTheOther) {
+  // solveTwo() runs the two recursions stage by stage in one pass over the factors, each with its own vectors, or,
+  // with the pipelined factorization, each solve and its refinement on its own thread: each result is bit-identical
+  // to a solve of its own on another solver, over repeated factorizations (the vectors are reused), with and
+  // without a dual regularization.
   int solved = 0;
   for (unsigned seed = 0; seed < 40; ++seed) {
     Problem q = randomProblem(seed, true, seed % 3 == 0 ? 1e-3 : 0.0);
     StageKktSolver seq(q.p, q.layout, q.fixed, q.equality), pip(q.p, q.layout, q.fixed, q.equality);
+    StageKktSolver one_pass(q.p, q.layout, q.fixed, q.equality);
     pip.setPipelined(true);
     std::mt19937 rng(seed + 1000);
     std::uniform_real_distribution<double> U(-1.0, 1.0);
@@ -163,6 +165,7 @@ TEST(StageKkt, TwoSolvesInOnePassGiveTheBitsOfOneAfterTheOther) {
       for (double& v : q.hess) v *= 1.0 + 0.01 * U(rng);
       const KktStatus st = seq.factor(q.hess.data(), q.jac.data(), q.dx, q.dc);
       ASSERT_EQ(st, pip.factor(q.hess.data(), q.jac.data(), q.dx, q.dc)) << "seed " << seed;
+      ASSERT_EQ(st, one_pass.factor(q.hess.data(), q.jac.data(), q.dx, q.dc)) << "seed " << seed;
       if (st == KktStatus::kWrongInertia) continue;
       Eigen::VectorXd rx2(q.rx.size()), rc2(q.rc.size());
       for (int i = 0; i < rx2.size(); ++i) rx2[i] = U(rng);
@@ -170,12 +173,14 @@ TEST(StageKkt, TwoSolvesInOnePassGiveTheBitsOfOneAfterTheOther) {
       Eigen::VectorXd x1, y1, x2, y2, a1, b1, a2, b2;
       seq.solve(q.rx, q.rc, x1, y1);
       seq.solve(rx2, rc2, x2, y2);
-      pip.solveTwo({q.rx, q.rc, a1, b1}, {rx2, rc2, a2, b2});
-      ASSERT_EQ(a1, x1) << "seed " << seed;
-      ASSERT_EQ(b1, y1) << "seed " << seed;
-      ASSERT_EQ(a2, x2) << "seed " << seed;
-      ASSERT_EQ(b2, y2) << "seed " << seed;
-      EXPECT_EQ(pip.lastResidual(), seq.lastResidual()) << "seed " << seed;
+      for (StageKktSolver* two : {&pip, &one_pass}) {
+        two->solveTwo({q.rx, q.rc, a1, b1}, {rx2, rc2, a2, b2});
+        ASSERT_EQ(a1, x1) << "seed " << seed;
+        ASSERT_EQ(b1, y1) << "seed " << seed;
+        ASSERT_EQ(a2, x2) << "seed " << seed;
+        ASSERT_EQ(b2, y2) << "seed " << seed;
+        EXPECT_EQ(two->lastResidual(), seq.lastResidual()) << "seed " << seed;
+      }
       ++solved;
     }
   }
