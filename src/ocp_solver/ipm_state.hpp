@@ -54,8 +54,16 @@ class Ipm {
     int nd = 0;
   };
   QualityBase qualityBase() const;
-  double qualityFunction(const Direction& aff, const Direction& cen, double sigma, double tau,
-                         const QualityBase& base) const;
+  /// The bounded components of the affine and the centring step, one entry per bound in the order of the
+  /// variables then the slacks (lower before upper): what the quality function reads for every sigma.
+  struct QualityTerms {
+    // gap: distance to the bound; (b0 + alpha dv) - b1: that distance after a primal step alpha, where dv =
+    // sav + sigma sdv is the step of the component signed towards its bound's interior (lower: b0 = v, b1 = lo,
+    // sign +1; upper: b0 = hi - v, b1 = 0, sign -1); z + alpha_dual (az + sigma dzd): the bound's multiplier.
+    std::vector<double> gap, b0, b1, sav, sdv, z, az, dzd;
+  };
+  void qualityTerms(const Direction& aff, const Direction& cen, QualityTerms& t) const;
+  double qualityFunction(const QualityTerms& t, double sigma, double tau, const QualityBase& base) const;
   void combine(const Direction& aff, const Direction& cen, double sigma, Direction& d) const;
   bool progressAcceptable() const;
   void rememberProgress();
@@ -97,6 +105,7 @@ class Ipm {
   Vec xl_orig_, xu_orig_, gl_orig_, gu_orig_;  // the bounds before the relaxation
   std::vector<char> fixed_, has_xl_, has_xu_, ineq_, has_gl_, has_gu_;
   std::vector<int> x_bounded_, s_bounded_;  // variables and rows with a bound, ascending
+  QualityTerms quality_terms_;  // workspace of adaptiveDirection()
   std::vector<double> jac_scale_, hess_scale_;
 
   // iterate (scaled)
