@@ -17,6 +17,7 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/output_guard.hpp"
+#include "common/retain_memory.hpp"
 #include "planner/arm_flywheel_problem.hpp"
 #include "data/arm_trajectory_io.hpp"
 #include "planner/jump_problem.hpp"
@@ -132,6 +133,7 @@ int runArmPlan(const PlanArgs& a) {
 }
 
 int runPlan(const PlanArgs& a) {
+  common::shareOneHeap();  // before the planner's threads: a fresh process's first factorization faults less
   if (a.primitive == "arm-flywheel") {
     if (!a.warm_start.empty()) throw InputError("--warm-start: only for squat-jump and half-squat-jump");
     return runArmPlan(a);

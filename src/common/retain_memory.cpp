@@ -15,4 +15,10 @@ void retainFreedMemory() {
 #endif
 }
 
+void shareOneHeap() {
+#if defined(__GLIBC__)
+  mallopt(M_ARENA_MAX, 1);
+#endif
+}
+
 }  // namespace centaur::common

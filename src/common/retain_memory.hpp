@@ -14,4 +14,11 @@ namespace centaur::common {
 /// start of main(), before other threads exist.
 void retainFreedMemory();
 
+/// Lets every thread allocate from the main heap (glibc's M_ARENA_MAX = 1; no-op elsewhere) instead of giving each
+/// thread a heap of its own. A thread's own heap starts as fresh pages, so the planner's second core faulted in all
+/// of the stage blocks it fills during the first KKT factorization of a process (16-44 ms, 2 ms later); from the
+/// main heap they reuse memory the setup has already touched and freed. For a command whose threads allocate
+/// little once started (a plan); call before those threads exist.
+void shareOneHeap();
+
 }  // namespace centaur::common
