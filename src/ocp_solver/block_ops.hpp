@@ -39,19 +39,33 @@ void sparseColsTimesAdd(const SparseColumns& S, int col0, const Eigen::VectorXd&
 void sparseColsTransposedTimesAdd(const SparseColumns& S, int col0, int n, const Eigen::VectorXd& x, double* y);
 
 /// out = D S (add: out += D S) for a dense D and a sparse S: out.col(j) += S(k, j) D.col(k) over the nonzeros of
-/// column j in row order (the sums of Eigen's dense-times-sparse product, vectorized over the rows). With `perm`,
-/// S's columns are taken in that order (column j of the product from column perm[j] of S). In the first
-/// `lower_cols` columns only the rows from the diagonal down are computed (the entries above keep what they held).
+/// column j in row order (the sums of Eigen's dense-times-sparse product). With `perm`, S's columns are taken in
+/// that order (column j of the product from column perm[j] of S). In the first `lower_cols` columns only the rows
+/// from the diagonal down are computed (the entries above keep what they held).
+/// Blocks of kRows rows of a column are accumulated in registers over all of the column's nonzeros and stored once:
+/// each entry still gets its products added one after the other, in the same order, so the bits are those of an
+/// axpy per nonzero, without reloading and storing the column for each one.
 template <class Out>
 void denseTimesSparse(const Eigen::MatrixXd& D, const SparseColumns& S, Out&& out, bool add,
                       const std::vector<int>* perm = nullptr, int lower_cols = 0) {
+  constexpr int kRows = 8;
+  using Block = Eigen::Matrix<double, kRows, 1>;
   const Eigen::Index rows = D.rows();
+  const double* d = D.data();
   for (int j = 0; j < S.cols; ++j) {
     const int c = perm ? (*perm)[j] : j;
-    const Eigen::Index i0 = j < lower_cols ? j : 0;
-    if (!add) out.col(j).tail(rows - i0).setZero();
-    for (int p = S.start[c]; p < S.start[c + 1]; ++p) {
-      out.col(j).tail(rows - i0) += S.value[p] * D.col(S.row[p]).tail(rows - i0);
+    const int p0 = S.start[c], p1 = S.start[c + 1];
+    double* o = out.col(j).data();
+    Eigen::Index i = j < lower_cols ? j : 0;
+    for (; i + kRows <= rows; i += kRows) {
+      Block acc = add ? Block(Eigen::Map<const Block>(o + i)) : Block::Zero();
+      for (int p = p0; p < p1; ++p) acc += S.value[p] * Eigen::Map<const Block>(d + S.row[p] * rows + i);
+      Eigen::Map<Block>(o + i) = acc;
+    }
+    for (; i < rows; ++i) {
+      double acc = add ? o[i] : 0.0;
+      for (int p = p0; p < p1; ++p) acc += S.value[p] * d[S.row[p] * rows + i];
+      o[i] = acc;
     }
   }
 }
