@@ -302,7 +302,7 @@ void Ipm::initialize() {
   if (!evalDerivatives()) throw std::runtime_error("interior point: the initial derivatives cannot be evaluated");
   primalResidual(g_, s_, rp_);
   const double th = theta(g_, s_);
-  filter_.reset(1e4 * std::max(1.0, th));
+  filter_.start(1e4 * std::max(1.0, th));
   theta_min_ = 1e-4 * std::max(1.0, th);
   adaptive_ = opt_.mu_strategy == "adaptive" && !primal_dual;
   free_mode_ = true;

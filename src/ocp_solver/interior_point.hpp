@@ -69,6 +69,7 @@ struct IpmStats {
   int mode_switches = 0;        ///< adaptive -> monotone
   int watchdog_starts = 0;      ///< after 10 shortened steps in a row: full steps measured from a stored point
   int watchdog_returns = 0;     ///< ... that did not pay off: back to the stored point
+  int filter_resets = 0;        ///< Ipopt's filter reset heuristic emptied the line search's filter
   double time_total = 0.0;      ///< [s] wall
   double time_derivatives = 0.0;
   double time_functions = 0.0;  ///< objective and constraints (line search)

@@ -40,13 +40,29 @@ double Ipm::maxDualStep(const Direction& d, double tau) const {
   return a;
 }
 
-int Ipm::acceptance(double theta_t, double phi_t, double alpha, double gpd, double theta0, double phi0) const {
-  if (!std::isfinite(phi_t) || !filter_.acceptable(theta_t, phi_t)) return 0;
+// In Ipopt's order: theta_max, the test against the current point, then the filter, which notes why a trial was
+// rejected for its reset heuristic (Filter::accepted).
+int Ipm::acceptance(double theta_t, double phi_t, double alpha, double gpd, double theta0, double phi0) {
+  if (!std::isfinite(phi_t) || !filter_.belowThetaMax(theta_t)) return 0;
   const double tol = 10.0 * kEps * std::abs(phi0);
   const bool switching = theta0 <= theta_min_ && gpd < 0.0 &&
                          alpha * std::pow(-gpd, kSPhi) > kDelta * std::pow(theta0, kSTheta);
-  if (switching) return phi_t - phi0 - kEtaPhi * alpha * gpd <= tol ? 1 : 0;
-  return (theta_t <= (1.0 - kGammaTheta) * theta0 || phi_t - (phi0 - kGammaPhi * theta0) <= tol) ? 2 : 0;
+  int type = 0;
+  if (switching) {
+    type = phi_t - phi0 - kEtaPhi * alpha * gpd <= tol ? 1 : 0;
+  } else {
+    type = (theta_t <= (1.0 - kGammaTheta) * theta0 || phi_t - (phi0 - kGammaPhi * theta0) <= tol) ? 2 : 0;
+  }
+  if (type == 0) {
+    filter_.rejectedByCurrentPoint();
+    return 0;
+  }
+  if (!filter_.notDominated(theta_t, phi_t)) {
+    filter_.rejectedByFilter();
+    return 0;
+  }
+  if (filter_.accepted()) ++stats_.filter_resets;
+  return type;
 }
 
 bool Ipm::trialPoint(const Direction& d, double alpha) {

@@ -81,7 +81,7 @@ class Ipm {
                  const std::vector<char>& has_hi, double tau) const;
   double maxDualStep(const Direction& d, double tau) const;
   /// 0: rejected, 1: accepted by the Armijo condition (f-type), 2: by sufficient decrease of theta or phi (h-type).
-  int acceptance(double theta_t, double phi_t, double alpha, double gpd, double theta0, double phi0) const;
+  int acceptance(double theta_t, double phi_t, double alpha, double gpd, double theta0, double phi0);
   bool trialPoint(const Direction& d, double alpha);  // x_trial_, s_trial_, f_trial_, g_trial_
   bool secondOrderCorrection(double alpha, double gpd, double theta0, double phi0, double theta_t);
   /// Backtracking from alpha on d_ against the references of the current point; false below the minimum step.
