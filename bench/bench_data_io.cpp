@@ -1,5 +1,5 @@
 // Reading the data formats with their validation (data/hdf5.hpp): what the checks of every dataset (finite values,
-// time axis, quaternions, knots) cost next to the HDF5 read itself.
+// time axis, quaternions, knots) cost next to the HDF5 read itself; and writing a primitive (compression included).
 //   ./build/bench/bench_data_io --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -26,6 +26,17 @@ void BM_ReadPrimitive(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(centaur::data::readPrimitive(primitiveFile(), "squat-jump"));
 }
 BENCHMARK(BM_ReadPrimitive)->Unit(benchmark::kMicrosecond);
+
+// Writing the same primitive to a new file (through a temporary and a rename, as every output), deflate included.
+void BM_WritePrimitive(benchmark::State& state) {
+  const centaur::data::Primitive p = centaur::test::makeSyntheticJump("squat-jump");
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("bench-data-io-w-" + std::to_string(getpid()) + ".h5")).string();
+  for (auto _ : state) centaur::data::writePrimitive(path, p);
+  state.counters["file_bytes"] = static_cast<double>(std::filesystem::file_size(path));
+  std::filesystem::remove(path);
+}
+BENCHMARK(BM_WritePrimitive)->Unit(benchmark::kMicrosecond);
 
 // The checks alone, on the same arrays: every matrix finite, the time axis, the quaternions.
 void BM_ValidatePrimitiveArrays(benchmark::State& state) {

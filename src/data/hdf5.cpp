@@ -199,7 +199,7 @@ void Writer::dataset(hid_t loc, const std::string& name, const std::vector<hsize
     chunk[0] = std::min<hsize_t>(dims[0], kChunkRows);
     ok(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "chunking");
     ok(H5Pset_shuffle(dcpl.get()), "shuffle filter");
-    ok(H5Pset_deflate(dcpl.get(), 4), "deflate filter");
+    ok(H5Pset_deflate(dcpl.get(), kDeflateLevel), "deflate filter");
   }
   Id ds(check(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
               "dataset '" + name + "'"),

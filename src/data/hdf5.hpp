@@ -76,6 +76,11 @@ struct DatasetMeta {
   bool fixed_length_strings = false;  ///< write units/frame/description as fixed-length strings
 };
 
+/// Deflate level of every compressed dataset (after the shuffle filter). Level 1: a planned primitive's file is ~1 %
+/// larger than at level 4 and written in a fraction of the time, which a re-plan run as a process of its own pays
+/// (docs/benchmarks.md, "Process start"). Any level reads back the same with every HDF5 reader.
+constexpr unsigned kDeflateLevel = 1;
+
 class Writer {
  public:
   explicit Writer(std::string target) : target_(std::move(target)) {}

@@ -163,7 +163,7 @@ void writeTable(const Writer& w, hid_t loc, const std::string& name, const Table
   if (extendible || rows > 0) {
     const hsize_t chunk = extendible ? std::max<hsize_t>(chunk_rows, 1) : std::min<hsize_t>(rows, 1024);
     w.ok(H5Pset_chunk(dcpl.get(), 1, &chunk), "chunking");
-    if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) w.ok(H5Pset_deflate(dcpl.get(), 4), "deflate filter");
+    if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) w.ok(H5Pset_deflate(dcpl.get(), kDeflateLevel), "deflate filter");
   }
   const Id file_type = compoundType(w, table.columns(), true);
   const Id mem_type = compoundType(w, table.columns(), false);
