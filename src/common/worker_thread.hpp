@@ -61,4 +61,17 @@ class WorkerThread {
   std::thread thread_;
 };
 
+/// Runs `other` on `worker` while `mine` runs on the calling thread, and returns when both have finished; without a
+/// worker, `mine` and then `other` on the calling thread.
+inline void runAlongside(WorkerThread* worker, const std::function<void()>& mine, const std::function<void()>& other) {
+  if (worker == nullptr) {
+    mine();
+    other();
+    return;
+  }
+  worker->run(other);
+  mine();
+  worker->wait();
+}
+
 }  // namespace centaur::common

@@ -195,14 +195,7 @@ void RiccatiSolver::setParallel(bool on) {
 }
 
 void RiccatiSolver::runPair(const std::function<void()>& mine, const std::function<void()>& other) const {
-  if (!par_) {
-    mine();
-    other();
-    return;
-  }
-  par_->worker.run(other);
-  mine();
-  par_->worker.wait();
+  common::runAlongside(par_ ? &par_->worker : nullptr, mine, other);
 }
 
 RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,

@@ -136,13 +136,13 @@ bool OcpNlp::derivatives(const Eigen::VectorXd& x, double obj_factor, const Eige
     ocp_.addDerivatives(x.data(), obj_factor, y.data(), worker_terms_, scratch_[1], grad1_.data(), jac1_.data(),
                         hess1_.data());
   };
-  if (worker_) worker_->run(second);  // started first: it zeroes its buffers while the caller zeroes the outputs
-  grad.setZero(pattern_.n);
-  std::fill(jac, jac + nj, 0.0);
-  std::fill(hess, hess + nh, 0.0);
-  ocp_.addDerivatives(x.data(), obj_factor, y.data(), caller_terms_, scratch_[0], grad.data(), jac, hess);
-  if (worker_) worker_->wait();
-  else second();
+  const auto first = [&] {  // the caller's list into the outputs
+    grad.setZero(pattern_.n);
+    std::fill(jac, jac + nj, 0.0);
+    std::fill(hess, hess + nh, 0.0);
+    ocp_.addDerivatives(x.data(), obj_factor, y.data(), caller_terms_, scratch_[0], grad.data(), jac, hess);
+  };
+  common::runAlongside(worker_.get(), first, second);
   grad += grad1_;
   for (int k = 0; k < nj; ++k) jac[k] += jac1_[k];
   for (int k = 0; k < nh; ++k) hess[k] += hess1_[k];
