@@ -71,8 +71,12 @@ void expectKktPointsOfTheOther(const Ocp& ocp, const SolverSettings& s, const So
   const SolveResult ip_from_ri = solveWith(ocp, s, "ipopt", &ri.z);
   std::printf("  riccati from Ipopt's point %.10g (%d it), Ipopt from riccati's point %.10g (%d it)\n",
               ri_from_ip.info.cost, ri_from_ip.info.iterations, ip_from_ri.info.cost, ip_from_ri.info.iterations);
-  if (expect == Expect::kRiccatiDescends && ri_from_ip.info.status == "solved_acceptable") {
-    // the descent from Ipopt's point may end at Ipopt's acceptable level (15 iterations within acceptable_tol)
+  if (ri_from_ip.info.status == "solved_acceptable") {
+    // The descent from Ipopt's point may end at Ipopt's acceptable level (15 iterations within acceptable_tol), and
+    // so may staying there: Ipopt's point depends on the BLAS kernels OpenBLAS picks for the CPU (MUMPS runs on
+    // them). On AVX-512 CPUs (OpenBLAS's Cooperlake kernels) Ipopt reaches the 0.85 m squat jump's optimum in 87
+    // iterations instead of 75, and riccati's knots-only start there stays within 1e-6 but at the acceptable level.
+    // Whether it stayed is decided by the objective below.
     EXPECT_LT(ri_from_ip.info.max_constraint_violation, s.constr_viol_tol);
   } else {
     expectConverged(ri_from_ip, "riccati warm-started at Ipopt's optimum", s.constr_viol_tol);
