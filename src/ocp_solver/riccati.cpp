@@ -198,8 +198,49 @@ void RiccatiSolver::runPair(const std::function<void()>& mine, const std::functi
   common::runAlongside(par_ ? &par_->worker : nullptr, mine, other);
 }
 
+// The second thread runs before_stage and the row parts of stages N..0 ahead of the cost parts, until they stop
+// early; after each row part it fills that stage's H unless the calling thread has taken it.
+void RiccatiSolver::startRowParts(const std::vector<StageQp>& qp, const std::function<void(int)>& before_stage,
+                                  const std::function<void(int, int)>& fill_cost) {
+  const int N = static_cast<int>(qp.size()) - 1;
+  Parallel& pl = *par_;
+  if (fill_cost && pl.stages < N + 1) {
+    pl.cost_filled.reset(new std::atomic<int>[N + 1]);
+    pl.stages = N + 1;
+  }
+  if (fill_cost)
+    for (int k = 0; k <= N; ++k) pl.cost_filled[k].store(0, std::memory_order_relaxed);
+  pl.filled.store(N + 1, std::memory_order_relaxed);
+  pl.rows_done.store(N + 1, std::memory_order_relaxed);
+  pl.stop.store(false, std::memory_order_relaxed);
+  pl.worker.run([this, &qp, &before_stage, &fill_cost, &pl, N] {
+    for (int k = N; k >= 0 && !pl.stop.load(std::memory_order_relaxed); --k) {
+      if (before_stage) before_stage(k);
+      pl.filled.store(k, std::memory_order_release);
+      if (!row_part_valid_[k]) stageRows(qp, k);
+      row_part_valid_[k] = 1;
+      pl.rows_done.store(k, std::memory_order_release);
+      if (fill_cost) pl.claimCostFill(fill_cost, k, 1);
+    }
+  });
+}
+
+// The calling thread before stage k's cost part (parallel): it fills H itself when the second thread has filled
+// the stage's blocks but not taken H yet (it would wait for the row part otherwise), then waits for both.
+void RiccatiSolver::awaitStage(int k, const std::function<void(int, int)>& fill_cost) {
+  Parallel& pl = *par_;
+  if (fill_cost) {
+    while (pl.filled.load(std::memory_order_acquire) > k) std::this_thread::yield();
+    pl.claimCostFill(fill_cost, k, 0);
+  }
+  while (pl.rows_done.load(std::memory_order_acquire) > k) std::this_thread::yield();
+  if (fill_cost)
+    while (pl.cost_filled[k].load(std::memory_order_acquire) != 2) std::this_thread::yield();
+}
+
 RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
-                                            const std::function<void(int)>& before_stage, bool same_rows) {
+                                            const std::function<void(int)>& before_stage, bool same_rows,
+                                            const std::function<void(int, int)>& fill_cost) {
   const int N = static_cast<int>(qp.size()) - 1;
   if (static_cast<int>(st_.size()) != N + 2) same_rows = false;
   st_.resize(N + 2);
@@ -209,28 +250,16 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
   inertia_ = Inertia{};
   failed_stage_ = -1;
   factored_ = false;
-  if (par_) {
-    // The worker runs before_stage and the row parts of stages N..0 ahead of the cost parts, until they stop early.
-    Parallel& pl = *par_;
-    pl.rows_done.store(N + 1, std::memory_order_relaxed);
-    pl.stop.store(false, std::memory_order_relaxed);
-    pl.worker.run([this, &qp, &before_stage, &pl, N] {
-      for (int k = N; k >= 0 && !pl.stop.load(std::memory_order_relaxed); --k) {
-        if (before_stage) before_stage(k);
-        if (!row_part_valid_[k]) stageRows(qp, k);
-        row_part_valid_[k] = 1;
-        pl.rows_done.store(k, std::memory_order_release);
-      }
-    });
-  }
+  if (par_) startRowParts(qp, before_stage, fill_cost);
   bool ok = true;
   for (int k = N; k >= 0 && ok; --k) {
     if (par_) {
-      while (par_->rows_done.load(std::memory_order_acquire) > k) std::this_thread::yield();
+      awaitStage(k, fill_cost);
     } else {
       if (before_stage) before_stage(k);
       if (!row_part_valid_[k]) stageRows(qp, k);
       row_part_valid_[k] = 1;
+      if (fill_cost) fill_cost(k, 0);
     }
     ok = stageCost(qp, k);
     if (!ok) failed_stage_ = k;

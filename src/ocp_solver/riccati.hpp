@@ -66,8 +66,12 @@ class RiccatiSolver {
   /// the second thread when parallel). After an early kWrongInertia the stages not reached yet may be skipped.
   /// same_rows: C, A and B (and the stage sizes) are those of the previous factor(), only H changed (a retry of an
   /// inertia correction): the row parts already computed are kept, which gives the bits of a full factorization.
+  /// fill_cost(k, thread), if given, is called once for each stage whose cost part runs, after before_stage(k) and
+  /// before the cost part reads H; it must write nothing but stage k's H, which no row part reads. When parallel it
+  /// runs on whichever thread gets to it first (thread 0: the calling one, 1: the second), possibly while the other
+  /// runs stage k's row part and later stages' before_stage: the one that would otherwise wait does it.
   Status factor(const std::vector<StageQp>& qp, const std::function<void(int)>& before_stage = {},
-                bool same_rows = false);
+                bool same_rows = false, const std::function<void(int, int)>& fill_cost = {});
   /// Run each stage's row part (the rank split of its rows, which needs no cost) on a second thread, ahead of the
   /// cost parts (the reduced Hessians and the cost-to-go) on the calling one. The factors are bit-identical.
   void setParallel(bool on);
@@ -101,9 +105,22 @@ class RiccatiSolver {
   struct Stage;
   struct Parallel {
     common::WorkerThread worker;
+    std::atomic<int> filled{0};     // before_stage has run for stages filled..N
     std::atomic<int> rows_done{0};  // the row parts of stages rows_done..N are done
     std::atomic<bool> stop{false};  // the cost parts stopped early: skip the remaining row parts
+    std::unique_ptr<std::atomic<int>[]> cost_filled;  // per stage: 0 free, 1 being filled, 2 filled (fill_cost)
+    int stages = 0;                                    // the size of cost_filled
+    /// fill_cost(k, thread) unless the other thread has taken stage k.
+    void claimCostFill(const std::function<void(int, int)>& fill_cost, int k, int thread) {
+      int expected = 0;
+      if (!cost_filled[k].compare_exchange_strong(expected, 1, std::memory_order_acq_rel)) return;
+      fill_cost(k, thread);
+      cost_filled[k].store(2, std::memory_order_release);
+    }
   };
+  void startRowParts(const std::vector<StageQp>& qp, const std::function<void(int)>& before_stage,
+                     const std::function<void(int, int)>& fill_cost);
+  void awaitStage(int k, const std::function<void(int, int)>& fill_cost);
   void stageRows(const std::vector<StageQp>& qp, int k);
   bool stageCost(const std::vector<StageQp>& qp, int k);
   void eliminateRows(Stage& s);

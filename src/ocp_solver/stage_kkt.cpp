@@ -272,9 +272,10 @@ void StageKktSolver::fillRows(int k) {
 }
 
 // H of stage k (after fillRows): the Hessian entries, the diagonal, the penalty rows.
-void StageKktSolver::fillCost(int k) {
+void StageKktSolver::fillCost(int k, int thread) {
   StageQp& q = qp_[k];
-  Eigen::VectorXd& a = fill_a_;
+  Eigen::VectorXd& a = cost_fill_[thread].a;
+  std::vector<int>& nz = cost_fill_[thread].nz;
   const int n = q.nx + q.nu;
   q.H.setZero(n, n);
   for (const HessEntry& h : hess_entries_[k]) {
@@ -294,11 +295,11 @@ void StageKktSolver::fillCost(int k) {
         for (const Entry& e2 : row.entries) q.H(e1.col, e2.col) += w * jac_[e1.slot] * jac_[e2.slot];
     } else {  // the row after substituting the dynamics: sparse too (a few states and controls)
       rowVector(row, jac_, nullptr, a, shift);
-      nz_.clear();
+      nz.clear();
       for (int j = 0; j < a.size(); ++j)
-        if (a[j] != 0.0) nz_.push_back(j);
-      for (int c : nz_)
-        for (int r2 : nz_) q.H(r2, c) += w * a[r2] * a[c];
+        if (a[j] != 0.0) nz.push_back(j);
+      for (int c : nz)
+        for (int r2 : nz) q.H(r2, c) += w * a[r2] * a[c];
     }
   }
 }
@@ -327,13 +328,14 @@ KktStatus StageKktSolver::refactor(const double* hess, const double* jac, const 
 
 KktStatus StageKktSolver::run(bool same_rows) {
   kmax_ = -1.0;
-  // On the second thread when pipelined: each stage is filled just before its row part. Stages the recursion did
-  // not reach after an early stop are filled by the next factorization.
-  const auto fill = [this](int k) {
+  // When pipelined, each stage's rows are filled on the second thread just before its row part, and its H by
+  // whichever thread is free first. Stages the recursion did not reach after an early stop are filled by the next
+  // factorization.
+  const auto fill_rows = [this](int k) {
     if (!rows_filled_[k]) fillRows(k);
-    fillCost(k);
   };
-  switch (riccati_.factor(qp_, fill, same_rows)) {
+  const auto fill_cost = [this](int k, int thread) { fillCost(k, thread); };
+  switch (riccati_.factor(qp_, fill_rows, same_rows, fill_cost)) {
     case RiccatiSolver::Status::kOk: return KktStatus::kOk;
     case RiccatiSolver::Status::kSingular: return KktStatus::kSingular;
     default: return KktStatus::kWrongInertia;

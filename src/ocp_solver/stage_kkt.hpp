@@ -106,9 +106,10 @@ class StageKktSolver final : public KktSolver {
   void rowVector(const Row& row, const double* jac, const Eigen::VectorXd* b, Eigen::VectorXd& a,
                  double& rhs_shift) const;
   /// Scatter the values of stage k into qp_[k] (and the dynamics scales of its rows); touches no other stage.
-  /// fillRows: what depends on the Jacobian and the set of exact rows only; fillCost: H.
+  /// fillRows: what depends on the Jacobian and the set of exact rows only; fillCost: H (after fillRows(k), with
+  /// the scratch of `thread`, 0 or 1: the two threads of a pipelined factorization fill different stages at once).
   void fillRows(int k);
-  void fillCost(int k);
+  void fillCost(int k, int thread);
   KktStatus run(bool same_rows);
   /// Solve and refine (reads the factorization, writes w and the step only).
   void solveWith(SolveWork& w, const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx,
@@ -151,13 +152,17 @@ class StageKktSolver final : public KktSolver {
   double last_residual_ = 0.0;
   double kmax_ = -1.0;  // largest entry of the factored matrix (-1: not computed since the last factor())
   SolveWork work_[2];
-  std::vector<int> nz_;                       // nonzero columns of a substituted row
   std::vector<std::vector<int>> exact_rows_;  // per stage: NLP rows kept as rows of C_k
   std::vector<std::vector<int>> penalty_rows_;
   std::vector<StageQp> qp_;
   RiccatiSolver riccati_;
   Eigen::VectorXd diag_;                      // dynamics row scale d (entry on x_{k+1})
-  Eigen::VectorXd fill_a_;                    // row scratch of fillRows() and fillCost()
+  Eigen::VectorXd fill_a_;                    // row scratch of fillRows()
+  struct CostFillScratch {
+    Eigen::VectorXd a;    // a substituted row
+    std::vector<int> nz;  // its nonzero columns
+  };
+  CostFillScratch cost_fill_[2];              // of fillCost(), per thread
   std::vector<char> rows_filled_;             // per stage: fillRows() ran since the last factor()
 };
 

@@ -8,6 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include <cstdio>
+#include <limits>
 #include <random>
 
 #include "ocp_solver/riccati.hpp"
@@ -411,4 +413,70 @@ TEST(Riccati, KeptRowPartsGiveTheBitsOfAFullFactorization) {
   }
   EXPECT_GT(early_then_kept, 10);
   EXPECT_GT(ok, 40);
+}
+
+TEST(Riccati, HFilledByEitherThreadGivesTheBitsOfTheSequentialFactorization) {
+  // fill_cost writes each stage's H just before its cost part needs it, on whichever thread is free (the calling one
+  // takes a stage whose row part is still running). The problem handed to factor() starts with H poisoned (NaN):
+  // every stage the recursion reaches must be filled exactly once, before its cost part reads it, and the result must
+  // be the status, failing stage, inertia and solution of the sequential solver on the filled problem, bit for bit,
+  // first attempts and retries (same_rows) alike. Stages after an early stop may be filled or not, at most once.
+  int early = 0, ok = 0, by_caller = 0, by_worker = 0;
+  for (const bool parallel : {false, true}) {
+    for (unsigned seed = 600; seed < 660; ++seed) {
+      Gen g(seed);
+      const int N = 2 + seed % 8;
+      auto filled = randomQp(g, N, seed % 2 == 0 ? Curvature::kIndefinite : Curvature::kConvex, seed % 3 == 0);
+      RiccatiSolver seq, sut;
+      sut.setParallel(parallel);
+      for (const double shift : {0.0, 10.0}) {
+        for (StageQp& s : filled) s.H.diagonal().array() += shift;
+        auto poisoned = filled;
+        for (StageQp& s : poisoned) s.H.setConstant(std::numeric_limits<double>::quiet_NaN());
+        std::vector<int> fills(N + 1, 0), rows_seen(N + 1, 0);
+        std::vector<int> by_thread(2, 0);
+        const auto rows = [&](int k) { ++rows_seen[k]; };
+        const auto cost = [&](int k, int thread) {
+          EXPECT_EQ(rows_seen[k], 1) << "seed " << seed << ": H of stage " << k << " filled before its rows";
+          poisoned[k].H = filled[k].H;
+          ++fills[k];
+          ++by_thread[thread];
+        };
+        const bool retry = shift > 0.0;
+        const auto a = seq.factor(filled, {}, retry);
+        const auto b = sut.factor(poisoned, rows, retry, cost);
+        ASSERT_EQ(a, b) << "seed " << seed << " shift " << shift;
+        ASSERT_EQ(seq.failedStage(), sut.failedStage()) << "seed " << seed;
+        EXPECT_EQ(seq.inertia().positive, sut.inertia().positive) << "seed " << seed;
+        EXPECT_EQ(seq.inertia().negative, sut.inertia().negative) << "seed " << seed;
+        EXPECT_EQ(seq.inertia().zero, sut.inertia().zero) << "seed " << seed;
+        const bool stopped = a == RiccatiSolver::Status::kWrongInertia;
+        const int reached = stopped ? std::max(seq.failedStage(), 0) : 0;
+        for (int k = 0; k <= N; ++k) {
+          if (k >= reached || !stopped) {
+            EXPECT_EQ(fills[k], 1) << "seed " << seed << " stage " << k;
+          } else {
+            EXPECT_LE(fills[k], 1) << "seed " << seed << " stage " << k;
+          }
+        }
+        if (!parallel) {
+          EXPECT_EQ(by_thread[1], 0) << "seed " << seed;
+        }
+        by_caller += parallel ? by_thread[0] : 0;
+        by_worker += by_thread[1];
+        early += stopped;
+        if (stopped) continue;
+        ++ok;
+        std::vector<StageSolution> x, y;
+        seq.solve(filled, x);
+        sut.solve(poisoned, y);
+        ASSERT_TRUE(sameBits(x, y)) << "seed " << seed;
+      }
+    }
+  }
+  EXPECT_GT(early, 10);
+  EXPECT_GT(ok, 40);
+  // Which thread fills a stage depends on timing; over these ~700 stages both did some.
+  EXPECT_GT(by_caller + by_worker, 0);
+  std::printf("H filled by the calling thread %d times, by the second %d times\n", by_caller, by_worker);
 }
