@@ -158,7 +158,7 @@ class StageKktSolver final : public KktSolver {
   RiccatiSolver riccati_;
   Eigen::VectorXd diag_;                      // dynamics row scale d (entry on x_{k+1})
   Eigen::VectorXd fill_a_;                    // row scratch of fillRows()
-  struct CostFillScratch {
+  struct alignas(64) CostFillScratch {  // a cache line each: both threads write theirs at once
     Eigen::VectorXd a;    // a substituted row
     std::vector<int> nz;  // its nonzero columns
   };
