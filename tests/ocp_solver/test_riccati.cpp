@@ -257,6 +257,23 @@ bool sameBits(const std::vector<StageSolution>& a, const std::vector<StageSoluti
   return true;
 }
 
+// Two factorizations of the same problem: the same failing stage and inertia counts.
+void expectSameInertia(const RiccatiSolver& a, const RiccatiSolver& b, unsigned seed) {
+  EXPECT_EQ(a.failedStage(), b.failedStage()) << "seed " << seed;
+  EXPECT_EQ(a.inertia().positive, b.inertia().positive) << "seed " << seed;
+  EXPECT_EQ(a.inertia().negative, b.inertia().negative) << "seed " << seed;
+  EXPECT_EQ(a.inertia().zero, b.inertia().zero) << "seed " << seed;
+}
+
+// ... and the same solution, bit for bit (qa, qb: the problems each was factored with).
+void expectSameSolution(RiccatiSolver& a, const std::vector<StageQp>& qa, RiccatiSolver& b,
+                        const std::vector<StageQp>& qb, unsigned seed) {
+  std::vector<StageSolution> x, y;
+  a.solve(qa, x);
+  b.solve(qb, y);
+  EXPECT_TRUE(sameBits(x, y)) << "seed " << seed;
+}
+
 // Dynamics given as sparse columns (StageQp::M, as the planner's KKT solver gives them) give the solution of the
 // dense A and B, bit for bit; resize() drops them, so a stage refilled with other dynamics is not solved with stale
 // ones.
@@ -349,10 +366,7 @@ TEST(Riccati, ParallelRowPartsGiveBitIdenticalFactorsInertiaAndSolutions) {
       const auto a = seq.factor(qp, [&](int k) { seen_seq.push_back(k); });
       const auto b = par.factor(qp, [&](int k) { seen_par.push_back(k); });
       ASSERT_EQ(a, b) << "seed " << seed;
-      EXPECT_EQ(seq.failedStage(), par.failedStage()) << "seed " << seed;
-      EXPECT_EQ(seq.inertia().positive, par.inertia().positive) << "seed " << seed;
-      EXPECT_EQ(seq.inertia().negative, par.inertia().negative) << "seed " << seed;
-      EXPECT_EQ(seq.inertia().zero, par.inertia().zero) << "seed " << seed;
+      expectSameInertia(seq, par, seed);
       const bool stopped = a == RiccatiSolver::Status::kWrongInertia && !full;
       const int last_seq = stopped ? std::max(seq.failedStage(), 0) : 0;
       EXPECT_EQ(static_cast<int>(seen_seq.size()), stopped && seq.failedStage() <= N ? N + 1 - last_seq : N + 1)
@@ -366,10 +380,7 @@ TEST(Riccati, ParallelRowPartsGiveBitIdenticalFactorsInertiaAndSolutions) {
       singular += a == RiccatiSolver::Status::kSingular;
       ok += a == RiccatiSolver::Status::kOk;
       if (stopped) continue;
-      std::vector<StageSolution> x, y;
-      seq.solve(qp, x);
-      par.solve(qp, y);
-      ASSERT_TRUE(sameBits(x, y)) << "seed " << seed;
+      expectSameSolution(seq, qp, par, qp, seed);
     }
   }
   EXPECT_GT(early, 0);
@@ -397,17 +408,12 @@ TEST(Riccati, KeptRowPartsGiveTheBitsOfAFullFactorization) {
         const auto a = kept.factor(qp, {}, true);
         const auto b = fresh.factor(qp);
         ASSERT_EQ(a, b) << "seed " << seed << " shift " << shift;
-        ASSERT_EQ(kept.failedStage(), fresh.failedStage()) << "seed " << seed;
-        EXPECT_EQ(kept.inertia().positive, fresh.inertia().positive) << "seed " << seed;
-        EXPECT_EQ(kept.inertia().zero, fresh.inertia().zero) << "seed " << seed;
+        expectSameInertia(kept, fresh, seed);
         early_then_kept += stopped;
         stopped = a == RiccatiSolver::Status::kWrongInertia;
         if (stopped) continue;
         ++ok;
-        std::vector<StageSolution> x, y;
-        kept.solve(qp, x);
-        fresh.solve(qp, y);
-        ASSERT_TRUE(sameBits(x, y)) << "seed " << seed;
+        expectSameSolution(kept, qp, fresh, qp, seed);
       }
     }
   }
@@ -446,10 +452,7 @@ TEST(Riccati, HFilledByEitherThreadGivesTheBitsOfTheSequentialFactorization) {
         const auto a = seq.factor(filled, {}, retry);
         const auto b = sut.factor(poisoned, rows, retry, cost);
         ASSERT_EQ(a, b) << "seed " << seed << " shift " << shift;
-        ASSERT_EQ(seq.failedStage(), sut.failedStage()) << "seed " << seed;
-        EXPECT_EQ(seq.inertia().positive, sut.inertia().positive) << "seed " << seed;
-        EXPECT_EQ(seq.inertia().negative, sut.inertia().negative) << "seed " << seed;
-        EXPECT_EQ(seq.inertia().zero, sut.inertia().zero) << "seed " << seed;
+        expectSameInertia(seq, sut, seed);
         const bool stopped = a == RiccatiSolver::Status::kWrongInertia;
         const int reached = stopped ? std::max(seq.failedStage(), 0) : 0;
         for (int k = 0; k <= N; ++k) {
@@ -467,16 +470,13 @@ TEST(Riccati, HFilledByEitherThreadGivesTheBitsOfTheSequentialFactorization) {
         early += stopped;
         if (stopped) continue;
         ++ok;
-        std::vector<StageSolution> x, y;
-        seq.solve(filled, x);
-        sut.solve(poisoned, y);
-        ASSERT_TRUE(sameBits(x, y)) << "seed " << seed;
+        expectSameSolution(seq, filled, sut, poisoned, seed);
       }
     }
   }
   EXPECT_GT(early, 10);
   EXPECT_GT(ok, 40);
-  // Which thread fills a stage depends on timing; over these ~700 stages both did some.
+  // The parallel solver filled through the callback; which thread took a stage depends on timing (printed).
   EXPECT_GT(by_caller + by_worker, 0);
   std::printf("H filled by the calling thread %d times, by the second %d times\n", by_caller, by_worker);
 }
