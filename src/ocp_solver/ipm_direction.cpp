@@ -19,7 +19,10 @@ constexpr int kDegenIters = 3;
 // delta_w, the first attempt already uses one (the unregularized matrix is then not tried). Ipopt takes this
 // shortcut only when the unregularized matrix was singular, not merely of the wrong inertia; the jump OCPs' KKT
 // matrices have the wrong inertia at almost every iteration, and always trying the unregularized matrix first
-// took the squat jump from 77 to 971 iterations, so ours triggers on the wrong inertia too.
+// took the squat jump from 77 to 971 iterations, so ours triggers on the wrong inertia too. When no delta_w up to
+// its maximum gives the inertia, the rows are taken as dependent after all, as Ipopt does: delta_c, and delta_w
+// from zero again. On three points of docs/planner.md's half-squat-jump grid every delta_w up to 1e20 failed in
+// an early iteration; with delta_c the solves go on and converge.
 bool Ipm::factorWithCorrection() {
   sigma_s_.setZero(m_);
   for (int r = 0; r < m_; ++r) {
@@ -58,7 +61,11 @@ bool Ipm::factorWithCorrection() {
     } else {
       delta_w_ *= delta_w_last_ == 0.0 ? kKappaWPlusBar : kKappaWPlus;
     }
-    if (delta_w_ > kDeltaWMax) break;
+    if (delta_w_ > kDeltaWMax) {
+      if (delta_c_ > 0.0) break;
+      delta_c_ = kDeltaC * std::pow(mu_, kKappaC);
+      delta_w_ = 0.0;
+    }
   }
   stats_.time_factor += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   if (!ok) return false;

@@ -1,5 +1,5 @@
 // ctest-labels: physics integration
-// The two OCP backends (Ipopt + MUMPS, the reference; our interior point with the stage-wise KKT solver) on 20
+// The two OCP backends (Ipopt + MUMPS, the reference; our interior point with the stage-wise KKT solver) on 21
 // perturbed variants of the shipped problems: targets, wall distances, friction coefficients, both model presets,
 // pyramid and cone friction, free touch-down, and the arm flywheel's period and momentum. For every variant both
 // converge, and either
@@ -158,6 +158,10 @@ const std::vector<Variant> kVariants = {
   {"HalfSquatMu08", "half-squat-jump", {"contact.mu=0.8"}, Expect::kBothStay},
   {"HalfSquatAuthorsCone", "half-squat-jump", {"model.preset=centauro-authors", "contact.friction=cone"},
    Expect::kSame},
+  // A point of docs/planner.md's half-squat-jump grid where riccati's KKT matrix had the wrong inertia for every
+  // primal regularization in an early iteration (numerical_trouble before the dual regularization followed).
+  {"HalfSquatAuthorsWall015Height010", "half-squat-jump",
+   {"model.preset=centauro-authors", "target.wall_distance=0.15", "target.wall_height=0.1"}, Expect::kSame},
   {"ArmMomentum4", "arm-flywheel", {"phase_anchor=true", "cost.momentum_target=4.0"}, Expect::kSame},
   {"ArmPeriod08", "arm-flywheel", {"phase_anchor=true", "horizon.period=0.8"}, Expect::kBothStay},
   {"ArmPeriod12", "arm-flywheel", {"phase_anchor=true", "horizon.period=1.2"}, Expect::kSame},
