@@ -319,6 +319,35 @@ void Ipm::printIteration(char mode) const {
                delta_w_, alpha_primal_, ls_type_, ls_trials_);
 }
 
+void Ipm::storeAcceptablePoint() {
+  AcceptablePoint& a = acceptable_point_;
+  a.valid = true;
+  a.x = x_, a.s = s_, a.y = y_, a.zl = zl_, a.zu = zu_, a.vl = vl_, a.vu = vu_, a.g = g_;
+  a.f = f_;
+}
+
+// As Ipopt's line search before its restoration phase: at an acceptable point the solve ends there; at an almost
+// feasible one (theta <= 1e-2 tol) a restoration cannot reduce the infeasibility, and the last acceptable iterate
+// is the result if there was one.
+bool Ipm::afterFailedLineSearch(bool acceptable, IpmStatus& stop) {
+  if (acceptable) {
+    stop = IpmStatus::kAcceptable;
+    return false;
+  }
+  if (theta(g_, s_) <= 1e-2 * opt_.tol) {
+    stop = acceptable_point_.valid ? IpmStatus::kAcceptable : IpmStatus::kRestorationFailed;
+    if (acceptable_point_.valid) {
+      const AcceptablePoint& a = acceptable_point_;
+      x_ = a.x, s_ = a.s, y_ = a.y, zl_ = a.zl, zu_ = a.zu, vl_ = a.vl, vu_ = a.vu, g_ = a.g;
+      f_ = a.f;
+    }
+    return false;
+  }
+  if (restoration()) return true;
+  stop = IpmStatus::kRestorationFailed;
+  return false;
+}
+
 IpmResult Ipm::run() {
   t0_ = std::chrono::steady_clock::now();
   IpmResult res;
@@ -343,6 +372,7 @@ IpmResult Ipm::run() {
     const bool acceptable = err <= opt_.acceptable_tol && primal <= opt_.acceptable_constr_viol_tol &&
                             compl_err <= opt_.acceptable_compl_inf_tol;
     acceptable_count_ = acceptable ? acceptable_count_ + 1 : 0;
+    if (acceptable) storeAcceptablePoint();
     if (acceptable_count_ >= opt_.acceptable_iter) {
       res.status = IpmStatus::kAcceptable;
       break;
@@ -371,12 +401,7 @@ IpmResult Ipm::run() {
       }
       stepped = lineSearch();
     }
-    if (!stepped) {
-      if (!restoration()) {
-        res.status = IpmStatus::kRestorationFailed;
-        break;
-      }
-    }
+    if (!stepped && !afterFailedLineSearch(acceptable, res.status)) break;
     ++stats_.iterations;
     if (!evalDerivatives()) {
       res.status = IpmStatus::kEvaluationError;

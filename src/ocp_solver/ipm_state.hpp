@@ -146,6 +146,17 @@ class Ipm {
   } wd_;
 
   int acceptable_count_ = 0;
+  // Ipopt's backup point: the last iterate that met the acceptable tolerances, taken back when a line search fails
+  // at an almost feasible point (no restoration can help there).
+  struct AcceptablePoint {
+    bool valid = false;
+    Vec x, s, y, zl, zu, vl, vu, g;
+    double f = 0.0;
+  } acceptable_point_;
+  void storeAcceptablePoint();
+  /// After a line search that failed: true if the restoration phase found a point to go on from; false with the
+  /// status to stop with (kAcceptable where Ipopt stops at an acceptable point, else kRestorationFailed).
+  bool afterFailedLineSearch(bool acceptable, IpmStatus& stop);
   // adaptive barrier: free mode (mu chosen each iteration by the quality function), fixed mode (monotone)
   bool adaptive_ = false, free_mode_ = true;
   Filter progress_filter_;  // (constraint violation, objective) of the accepted free-mode iterates
