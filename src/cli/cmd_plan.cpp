@@ -81,7 +81,12 @@ void printSolveLine(const std::string& name, const planner::SolveResult& result)
   const planner::SolveStats& st = result.stats;
   std::fprintf(stderr, "%s: %s after %d iterations in %.3f s, cost %.6g, max violation %.2e\n", name.c_str(),
                info.status.c_str(), info.iterations, info.solve_time_s, info.cost, info.max_constraint_violation);
-  std::fprintf(stderr, "  backend %s: derivatives %.3f s", st.backend.c_str(), st.derivative_time_s);
+  std::fprintf(stderr, "  backend %s", st.backend.c_str());
+  if (!st.first_attempt.status.empty()) {
+    std::fprintf(stderr, " (solver.backend auto: riccati ended %s after %d iterations, %.3f s)",
+                 st.first_attempt.status.c_str(), st.first_attempt.iterations, st.first_attempt.solve_time_s);
+  }
+  std::fprintf(stderr, ": derivatives %.3f s", st.derivative_time_s);
   if (st.factorizations >= 0) {
     std::fprintf(stderr, ", %d KKT factorizations (%.2f per iteration) %.3f s, KKT solves %.3f s", st.factorizations,
                  info.iterations > 0 ? static_cast<double>(st.factorizations) / info.iterations : 0.0,
@@ -90,7 +95,8 @@ void printSolveLine(const std::string& name, const planner::SolveResult& result)
   std::fprintf(stderr, "\n");
 }
 
-nlohmann::json solveJson(const std::string& name, const data::SolveInfo& info) {
+nlohmann::json solveJson(const std::string& name, const planner::SolveResult& result) {
+  const data::SolveInfo& info = result.info;
   nlohmann::json j;
   j["primitive"] = name;
   j["status"] = info.status;
@@ -98,6 +104,14 @@ nlohmann::json solveJson(const std::string& name, const data::SolveInfo& info) {
   j["solve_time_s"] = info.solve_time_s;
   j["cost"] = info.cost;
   j["max_constraint_violation"] = info.max_constraint_violation;
+  j["backend"] = result.stats.backend;
+  const planner::SolveStats::FirstAttempt& first = result.stats.first_attempt;
+  if (!first.status.empty()) {
+    j["first_attempt"] = {{"backend", "riccati"},
+                          {"status", first.status},
+                          {"iterations", first.iterations},
+                          {"solve_time_s", first.solve_time_s}};
+  }
   return j;
 }
 
@@ -123,7 +137,7 @@ int runArmPlan(const PlanArgs& a) {
     if (!ok) std::fprintf(stderr, "warning: the solver did not converge; the file is written and flagged (solve_status)\n");
   }
   if (a.json) {
-    nlohmann::json j = solveJson(tr.name, result.info);
+    nlohmann::json j = solveJson(tr.name, result);
     j["duration_s"] = tr.period;
     j["h_y_mean_Nms"] = h_mean;
     j["h_y_peak_Nms"] = h_peak;
@@ -169,7 +183,7 @@ int runPlan(const PlanArgs& a) {
     if (!ok) std::fprintf(stderr, "warning: the solver did not converge; the file is written and flagged (solve_status)\n");
   }
   if (a.json) {
-    nlohmann::json j = solveJson(prim.name, result.info);
+    nlohmann::json j = solveJson(prim.name, result);
     j["duration_s"] = s.duration;
     j["flight_time_s"] = s.flight_time;
     j["apex_height_m"] = s.apex_height;

@@ -1,5 +1,7 @@
 #include "planner/solve_ocp.hpp"
 
+#include <algorithm>
+
 #include "planner/ipopt_solver.hpp"
 #include "planner/riccati_backend.hpp"
 
@@ -7,8 +9,25 @@ namespace centaur::planner {
 
 namespace {
 
+// The iteration limit of riccati's attempt under `auto`: riccati needs at most ~170 iterations where it converges
+// (docs/planner.md), and where it stalls it would otherwise spend solver.max_iter before Ipopt starts.
+constexpr int kAutoRiccatiMaxIter = 300;
+
+// riccati, and where it does not converge, Ipopt from the same start; the time of both counts.
+SolveResult solveAuto(const Ocp& ocp, const SolverSettings& settings, const WarmStartPoint* warm) {
+  SolverSettings first = settings;
+  first.max_iter = std::min(settings.max_iter, kAutoRiccatiMaxIter);
+  SolveResult r = solveWithRiccati(ocp, first, warm);
+  if (r.info.solved()) return r;
+  SolveResult ip = solveWithIpopt(ocp, settings, warm);
+  ip.stats.first_attempt = {r.info.status, r.info.iterations, r.info.solve_time_s};
+  ip.info.solve_time_s += r.info.solve_time_s;
+  return ip;
+}
+
 SolveResult solveFrom(const Ocp& ocp, const SolverSettings& settings, const WarmStartPoint* warm) {
   if (settings.backend == "ipopt") return solveWithIpopt(ocp, settings, warm);
+  if (settings.backend == "auto") return solveAuto(ocp, settings, warm);
   return solveWithRiccati(ocp, settings, warm);
 }
 

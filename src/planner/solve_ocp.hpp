@@ -1,5 +1,5 @@
 #pragma once
-// Solve an Ocp with the backend the settings name (solver.backend: riccati | ipopt).
+// Solve an Ocp with the backend the settings name (solver.backend: riccati | ipopt | auto).
 #include "planner/ocp.hpp"
 #include "planner/solver_settings.hpp"
 

@@ -3,7 +3,7 @@
 namespace centaur::planner {
 
 void readSolverSettings(YamlReader& s, SolverSettings& c) {
-  s.get("backend", c.backend, {"riccati", "ipopt"});
+  s.get("backend", c.backend, {"riccati", "ipopt", "auto"});
   s.get("tol", c.tol, 1e-12, 1.0);
   s.get("constr_viol_tol", c.constr_viol_tol, 1e-12, 1.0);
   s.get("max_iter", c.max_iter, 0, 100000);
@@ -13,7 +13,8 @@ void readSolverSettings(YamlReader& s, SolverSettings& c) {
   s.get("user_scaling", c.user_scaling);
   s.get("print_level", c.print_level, 0, 12);
   if (c.hessian == "limited-memory" && c.backend != "ipopt") {
-    s.fail("hessian", "limited-memory needs solver.backend: ipopt (the riccati backend uses the exact Hessian)");
+    s.fail("hessian", "limited-memory needs solver.backend: ipopt (the riccati backend, also tried first by auto, "
+                      "uses the exact Hessian)");
   }
   s.finish();
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Settings and result of an OCP solve, common to both backends: our interior-point method with the stage-wise
-// (Riccati) KKT solver ("riccati", experimental) and Ipopt with MUMPS ("ipopt", the default and reference).
+// (Riccati) KKT solver ("riccati", experimental) and Ipopt with MUMPS ("ipopt", the default and reference); "auto"
+// runs riccati and, where it does not converge, Ipopt from the same start (docs/planner.md).
 #include <string>
 
 #include <Eigen/Core>
@@ -11,7 +12,7 @@
 namespace centaur::planner {
 
 struct SolverSettings {
-  std::string backend = "ipopt";  ///< ipopt | riccati
+  std::string backend = "ipopt";  ///< ipopt | riccati | auto (riccati, then Ipopt unless it converged)
   double tol = 1e-8;              ///< scaled optimality error (Ipopt's `tol`)
   double constr_viol_tol = 1e-4;  ///< constraint violation (Ipopt's `constr_viol_tol`)
   int max_iter = 3000;
@@ -34,6 +35,12 @@ struct SolveStats {
   double function_time_s = 0.0;    ///< objective and constraint evaluations [s wall]
   double factor_time_s = -1.0;     ///< KKT factorizations [s wall]
   double linear_solve_time_s = -1.0;
+  /// solver.backend auto, when Ipopt took over: how riccati's attempt ended (its status is empty otherwise).
+  struct FirstAttempt {
+    std::string status;
+    int iterations = 0;
+    double solve_time_s = 0.0;
+  } first_attempt;
 };
 
 struct SolveResult {

@@ -83,6 +83,8 @@ TEST(PlanCli, SolverStoppedEarlyExits3WithTheFileFlagged) {
   const auto j = nlohmann::json::parse(last);
   EXPECT_EQ(j["status"], "max_iterations");
   EXPECT_EQ(j["iterations"], 3);
+  EXPECT_EQ(j["backend"], "ipopt");
+  EXPECT_FALSE(j.contains("first_attempt"));
   for (const char* k : {"solve_time_s", "cost", "max_constraint_violation"}) EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_TRUE(fs::exists(d / "f.squat-jump.yaml")) << "effective configuration saved next to the output";
 }
@@ -94,6 +96,26 @@ TEST(PlanCli, RiccatiBackendStoppedEarlyExits3WithTheFileFlagged) {
   EXPECT_EQ(r.code, 3) << r.out;
   ASSERT_TRUE(fs::exists(out));
   EXPECT_EQ(centaur::data::readPrimitive(out.string(), "squat-jump").solve.status, "max_iterations");
+}
+
+// solver.backend auto: riccati stops early, then Ipopt from the same start stops early too. The JSON says which
+// backend produced the file and how riccati's attempt ended; both attempts' iteration limits are max_iter.
+TEST(PlanCli, AutoBackendReportsRiccatisAttemptAndIpoptsResult) {
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path d = tmp.path(), out = d / "a.h5";
+  const CliRun r =
+      run("plan squat-jump --quiet --json --set solver.backend=auto --set solver.max_iter=3 --out " + out.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  ASSERT_TRUE(fs::exists(out));
+  EXPECT_EQ(centaur::data::readPrimitive(out.string(), "squat-jump").solve.status, "max_iterations");
+  const auto j = nlohmann::json::parse(r.out.substr(r.out.rfind("\n{") + 1));
+  EXPECT_EQ(j["backend"], "ipopt");
+  EXPECT_EQ(j["iterations"], 3);
+  ASSERT_TRUE(j.contains("first_attempt")) << r.out;
+  EXPECT_EQ(j["first_attempt"]["backend"], "riccati");
+  EXPECT_EQ(j["first_attempt"]["status"], "max_iterations");
+  EXPECT_EQ(j["first_attempt"]["iterations"], 3);
+  EXPECT_LT(j["first_attempt"]["solve_time_s"].get<double>(), j["solve_time_s"].get<double>());
 }
 
 TEST(PlanCli, WarmStartFromAMissingFileGroupOrOtherHorizonIsBadInput) {
