@@ -45,7 +45,8 @@ nlohmann::json toJson(const data::Primitive& p, const data::PrimitiveSummary& s)
                 {"iterations", s.solve.iterations},
                 {"solve_time_s", s.solve.solve_time_s},
                 {"cost", s.solve.cost},
-                {"max_constraint_violation", s.solve.max_constraint_violation}};
+                {"max_constraint_violation", s.solve.max_constraint_violation},
+                {"backend", s.solve.backend}};
   j["flight"] = {{"time_s", s.flight_time},
                  {"take_off_s", orNull(s.take_off_time)},
                  {"touch_down_s", orNull(s.touch_down_time)},
@@ -100,7 +101,8 @@ void printHuman(const data::Primitive& p, const data::PrimitiveSummary& s) {
   o << s.name << "\n";
   o << "  solver      " << s.solve.status << (s.solve.solved() ? "" : "  (NOT SOLVED)") << ", " << s.solve.iterations
     << " iterations, " << fmt("%.3f s", s.solve.solve_time_s) << ", cost " << fmt("%.6g", s.solve.cost)
-    << ", max constraint violation " << fmt("%.3g", s.solve.max_constraint_violation) << "\n";
+    << ", max constraint violation " << fmt("%.3g", s.solve.max_constraint_violation)
+    << (s.solve.backend.empty() ? "" : ", backend " + s.solve.backend) << "\n";
   o << "  duration    " << fmt("%.3f s", s.duration) << " (" << s.samples << " samples, N_s = " << s.shooting_intervals
     << ")\n";
   if (s.flight.empty()) {

@@ -74,6 +74,7 @@ void writeGroup(const W& w, hid_t file, const ArmTrajectory& tr) {
   w.num(gid, "solve_time_s", tr.solve.solve_time_s);
   w.num(gid, "solve_cost", tr.solve.cost);
   w.num(gid, "solve_max_violation", tr.solve.max_constraint_violation);
+  if (!tr.solve.backend.empty()) w.str(gid, "solve_backend", tr.solve.backend);
   w.str(gid, "config_yaml", tr.config_yaml);
 
   w.data(gid, "t", tr.t.data(), N, 0, "s", "sample time over one period, t[N-1] = period");
@@ -236,6 +237,7 @@ ArmTrajectory readTrajectory(const R& r, const std::string& name) {
   tr.solve.solve_time_s = r.numbers(gid, name, "solve_time_s", 1)[0];
   tr.solve.cost = r.numbers(gid, name, "solve_cost", 1)[0];
   tr.solve.max_constraint_violation = r.numbers(gid, name, "solve_max_violation", 1)[0];
+  if (r.hasAttribute(gid, "solve_backend")) tr.solve.backend = r.text(gid, name, "solve_backend");
   tr.config_yaml = r.text(gid, name, "config_yaml");
   return tr;
 }

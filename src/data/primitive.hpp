@@ -24,6 +24,7 @@ struct SolveInfo {
   double solve_time_s = 0.0;
   double cost = 0.0;
   double max_constraint_violation = 0.0;
+  std::string backend;  ///< the solver that produced it: "ipopt" or "riccati" (empty: not recorded, older files)
   bool solved() const { return status == "solved"; }
 };
 

@@ -33,7 +33,7 @@ constexpr hsize_t kMaxKnots = 100000;
 // Group attributes the library owns; Primitive::scalars/vectors/strings may not use these names.
 const std::set<std::string>& reservedAttributes() {
   static const std::set<std::string> names = {
-      "solve_status", "solve_iterations", "solve_time_s", "final_cost", "max_constraint_violation",
+      "solve_status", "solve_iterations", "solve_time_s", "final_cost", "max_constraint_violation", "solve_backend",
       "config_yaml",  "foot_order",       "quaternion_order", "units",  "force_convention",
       "frames",       "format",           "format_version"};
   return names;
@@ -163,6 +163,7 @@ void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
   w.doubleAttribute(gid, "solve_time_s", p.solve.solve_time_s);
   w.doubleAttribute(gid, "final_cost", p.solve.cost);
   w.doubleAttribute(gid, "max_constraint_violation", p.solve.max_constraint_violation);
+  if (!p.solve.backend.empty()) w.stringAttribute(gid, "solve_backend", p.solve.backend);
   w.stringAttribute(gid, "config_yaml", p.config_yaml);
   w.stringAttribute(gid, "foot_order", "FL,FR,RL,RR");
   w.stringAttribute(gid, "quaternion_order", "w,x,y,z");
@@ -273,6 +274,8 @@ herr_t collectAttribute(hid_t loc, const char* name, const H5A_info_t* /*info*/,
     if (expect(is_scalar)) p.solve.cost = v.numbers[0];
   } else if (key == "max_constraint_violation") {
     if (expect(is_scalar)) p.solve.max_constraint_violation = v.numbers[0];
+  } else if (key == "solve_backend") {
+    if (expect(is_string)) p.solve.backend = v.text;
   } else if (key == "config_yaml") {
     if (expect(is_string)) p.config_yaml = v.text;
   } else if (key == "foot_order") {

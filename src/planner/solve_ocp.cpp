@@ -26,9 +26,11 @@ SolveResult solveAuto(const Ocp& ocp, const SolverSettings& settings, const Warm
 }
 
 SolveResult solveFrom(const Ocp& ocp, const SolverSettings& settings, const WarmStartPoint* warm) {
-  if (settings.backend == "ipopt") return solveWithIpopt(ocp, settings, warm);
-  if (settings.backend == "auto") return solveAuto(ocp, settings, warm);
-  return solveWithRiccati(ocp, settings, warm);
+  SolveResult r = settings.backend == "ipopt"  ? solveWithIpopt(ocp, settings, warm)
+                   : settings.backend == "auto" ? solveAuto(ocp, settings, warm)
+                                                : solveWithRiccati(ocp, settings, warm);
+  r.info.backend = r.stats.backend;  // stored with the primitive (solve_backend)
+  return r;
 }
 
 }  // namespace

@@ -95,7 +95,9 @@ TEST(PlanCli, RiccatiBackendStoppedEarlyExits3WithTheFileFlagged) {
   const CliRun r = run("plan squat-jump --quiet --set solver.backend=riccati --set solver.max_iter=3 --out " + out.string());
   EXPECT_EQ(r.code, 3) << r.out;
   ASSERT_TRUE(fs::exists(out));
-  EXPECT_EQ(centaur::data::readPrimitive(out.string(), "squat-jump").solve.status, "max_iterations");
+  const auto prim = centaur::data::readPrimitive(out.string(), "squat-jump");
+  EXPECT_EQ(prim.solve.status, "max_iterations");
+  EXPECT_EQ(prim.solve.backend, "riccati");
 }
 
 // solver.backend auto: riccati stops early, then Ipopt from the same start stops early too. The JSON says which
@@ -107,7 +109,9 @@ TEST(PlanCli, AutoBackendReportsRiccatisAttemptAndIpoptsResult) {
       run("plan squat-jump --quiet --json --set solver.backend=auto --set solver.max_iter=3 --out " + out.string());
   EXPECT_EQ(r.code, 3) << r.out;
   ASSERT_TRUE(fs::exists(out));
-  EXPECT_EQ(centaur::data::readPrimitive(out.string(), "squat-jump").solve.status, "max_iterations");
+  const auto prim = centaur::data::readPrimitive(out.string(), "squat-jump");
+  EXPECT_EQ(prim.solve.status, "max_iterations");
+  EXPECT_EQ(prim.solve.backend, "ipopt") << "the file records the backend that produced it";
   const auto j = nlohmann::json::parse(r.out.substr(r.out.rfind("\n{") + 1));
   EXPECT_EQ(j["backend"], "ipopt");
   EXPECT_EQ(j["iterations"], 3);

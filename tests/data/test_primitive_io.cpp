@@ -57,6 +57,7 @@ void expectSame(const Primitive& a, const Primitive& b) {
   EXPECT_EQ(a.solve.solve_time_s, b.solve.solve_time_s);
   EXPECT_EQ(a.solve.cost, b.solve.cost);
   EXPECT_EQ(a.solve.max_constraint_violation, b.solve.max_constraint_violation);
+  EXPECT_EQ(a.solve.backend, b.solve.backend);
   EXPECT_EQ(a.config_yaml, b.config_yaml);
   EXPECT_EQ(a.scalars, b.scalars);
   EXPECT_EQ(a.vectors, b.vectors);
@@ -109,6 +110,23 @@ TEST(PrimitiveIo, RoundTripPreservesEveryDatasetAndAttribute) {
   ASSERT_EQ(back.size(), 1u);
   expectSame(jump, back[0]);
   expectSame(jump, data::readPrimitive(path, "squat-jump"));
+}
+
+// Files written before the solver backend was recorded have no solve_backend attribute: they read as unknown.
+TEST(PrimitiveIo, AFileWithoutTheSolverBackendReadsItAsUnknown) {
+  TempDir dir;
+  Primitive jump = centaur::test::makeSyntheticJump("squat-jump");
+  ASSERT_EQ(jump.solve.backend, "riccati");
+  const std::string path = dir.file("jump.h5");
+  data::writePrimitives(path, {jump}, WriteMode::Replace);
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_GE(H5Adelete_by_name(f, "squat-jump", "solve_backend", H5P_DEFAULT), 0);
+  H5Fclose(f);
+  const Primitive back = data::readPrimitive(path, "squat-jump");
+  EXPECT_EQ(back.solve.backend, "");
+  jump.solve.backend.clear();
+  expectSame(jump, back);
 }
 
 TEST(PrimitiveIo, EmptyKnotsAndLargeConfigRoundTrip) {

@@ -136,6 +136,7 @@ TEST(ArmFlywheel, FileRoundTripAndAppend) {
   EXPECT_EQ(back.qd_max_model, tr.qd_max_model);
   EXPECT_EQ(back.solve.status, "solved");
   EXPECT_EQ(back.solve.iterations, tr.solve.iterations);
+  EXPECT_EQ(back.solve.backend, "ipopt");  // the default backend, recorded as solve_backend
   EXPECT_EQ(back.config_yaml, tr.config_yaml);
   // append: a second group next to the first one, which stays
   ArmTrajectory other = tr;

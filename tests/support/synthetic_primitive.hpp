@@ -143,6 +143,7 @@ inline data::Primitive makeSyntheticJump(const std::string& name, double offset 
   p.solve.iterations = 42;
   p.solve.solve_time_s = 0.1234;
   p.solve.cost = 1.5e3;
+  p.solve.backend = "riccati";
   p.solve.max_constraint_violation = 3.2e-9;
   p.config_yaml = "primitive: squat-jump\nmodel:\n  preset: centauro   # 93.1 kg\n  waist_mass: 69.0\n";
   p.scalars = {{"total_mass", J::mass}, {"waist_mass", 69.0}, {"g", J::g}};
