@@ -13,13 +13,16 @@ namespace {
 // (docs/planner.md), and where it stalls it would otherwise spend solver.max_iter before Ipopt starts.
 constexpr int kAutoRiccatiMaxIter = 300;
 
-// riccati, and where it does not converge, Ipopt from the same start; the time of both counts.
+// riccati, and where it does not converge, Ipopt from the same start; the time of both counts, against
+// solver.max_cpu_time too (Ipopt gets what riccati left, at least Ipopt's smallest limit).
 SolveResult solveAuto(const Ocp& ocp, const SolverSettings& settings, const WarmStartPoint* warm) {
   SolverSettings first = settings;
   first.max_iter = std::min(settings.max_iter, kAutoRiccatiMaxIter);
   SolveResult r = solveWithRiccati(ocp, first, warm);
   if (r.info.solved()) return r;
-  SolveResult ip = solveWithIpopt(ocp, settings, warm);
+  SolverSettings second = settings;
+  second.max_cpu_time = std::max(0.01, settings.max_cpu_time - r.info.solve_time_s);
+  SolveResult ip = solveWithIpopt(ocp, second, warm);
   ip.stats.first_attempt = {r.info.status, r.info.iterations, r.info.solve_time_s};
   ip.info.solve_time_s += r.info.solve_time_s;
   return ip;

@@ -122,6 +122,19 @@ TEST(PlanCli, AutoBackendReportsRiccatisAttemptAndIpoptsResult) {
   EXPECT_LT(j["first_attempt"]["solve_time_s"].get<double>(), j["solve_time_s"].get<double>());
 }
 
+// The time limit covers both attempts of auto: riccati runs out of it, and Ipopt gets only what is left.
+TEST(PlanCli, AutoBackendSharesOneTimeLimitBetweenItsAttempts) {
+  const centaur_test::TempDir tmp("centaur-plan-cli");
+  const fs::path out = tmp.path() / "t.h5";
+  const CliRun r = run("plan squat-jump --quiet --json --set solver.backend=auto --set solver.max_cpu_time=0.05 --out " +
+                       out.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  const auto j = nlohmann::json::parse(r.out.substr(r.out.rfind("\n{") + 1));
+  EXPECT_EQ(j["first_attempt"]["status"], "max_cpu_time");
+  EXPECT_EQ(j["status"], "max_cpu_time");
+  EXPECT_EQ(j["backend"], "ipopt");
+}
+
 TEST(PlanCli, WarmStartFromAMissingFileGroupOrOtherHorizonIsBadInput) {
   const centaur_test::TempDir tmp("centaur-plan-cli");
   const fs::path d = tmp.path(), out = d / "h.h5", neighbour = d / "short.h5";
