@@ -42,8 +42,8 @@ std::string describe(const data::DatabaseIndex& index, const data::GridEntry& e)
 }
 
 /// Plans grid point `e` into `file`; returns its solve status.
-std::string planPoint(const SweepSpec& spec, const data::DatabaseIndex& index, const data::GridEntry& e,
-                      const std::string& file) {
+data::SolveInfo planPoint(const SweepSpec& spec, const data::DatabaseIndex& index, const data::GridEntry& e,
+                          const std::string& file) {
   const planner::JumpConfig cfg =
       planner::loadJumpConfig(e.jump, "", plannerOverrides(spec, static_cast<std::size_t>(e.point)));
   const planner::JumpProblem problem(cfg);
@@ -52,7 +52,7 @@ std::string planPoint(const SweepSpec& spec, const data::DatabaseIndex& index, c
   prim.name = e.group;
   data::gridAttributes(index, e, prim);
   data::writePrimitive(file, prim, data::WriteMode::Replace);
-  return result.info.status;
+  return result.info;
 }
 
 }  // namespace
@@ -95,19 +95,23 @@ data::DatabaseIndex planDatabase(const SweepSpec& spec, const SweepDir& dir) {
     const std::string file = (plans / (e.group + ".h5")).string();
     const auto t0 = std::chrono::steady_clock::now();
     bool reused = false;
+    data::SolveInfo solve;
     if (fs::exists(file, ec)) {
       try {
-        e.solve_status = data::readPrimitive(file, e.group).solve.status;
+        solve = data::readPrimitive(file, e.group).solve;
         reused = true;
       } catch (const InputError&) {
         // a partial or foreign file: plan the point again
       }
     }
-    if (!reused) e.solve_status = planPoint(spec, index, e, file);
+    if (!reused) solve = planPoint(spec, index, e, file);
+    e.solve_status = solve.status;
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::fprintf(stderr, "sweep: [%d/%zu] %s %s (%s): %s%s, %.1f s\n", e.point + 1, index.points.size(),
+    // The backend, when recorded: with solver.backend auto it says where Ipopt took over.
+    const std::string by = solve.backend.empty() ? "" : " by " + solve.backend;
+    std::fprintf(stderr, "sweep: [%d/%zu] %s %s (%s): %s%s%s, %.1f s\n", e.point + 1, index.points.size(),
                  reused ? "kept" : "planned", e.group.c_str(), describe(index, e).c_str(), e.solve_status.c_str(),
-                 e.solve_status == "solved" ? "" : " (its runs are recorded as not_planned)", dt);
+                 by.c_str(), e.solve_status == "solved" ? "" : " (its runs are recorded as not_planned)", dt);
     sources.push_back(file);
   }
   data::writeDatabase(db, index, sources, spec.canonicalYaml());
