@@ -11,19 +11,15 @@
 #include "planner/arm_flywheel_problem.hpp"
 #include "planner/jump_problem.hpp"
 #include "planner/solve_ocp.hpp"
+#include "planner/solve_with.hpp"
 
 using namespace centaur;
 using namespace centaur::planner;
+using centaur::test::solveWith;
 
 namespace {
 
 double relDiff(double a, double b) { return std::abs(a - b) / std::max(1.0, std::abs(b)); }
-
-SolveResult solveWith(const Ocp& ocp, SolverSettings s, const std::string& backend, const Eigen::VectorXd* x0 = nullptr) {
-  s.backend = backend;
-  s.progress = false;
-  return solveOcp(ocp, s, x0);
-}
 
 void expectConverged(const SolveResult& r, const std::string& what, double constr_viol_tol) {
   EXPECT_EQ(r.info.status, "solved") << what;

@@ -7,19 +7,11 @@
 
 #include "planner/jump_problem.hpp"
 #include "planner/solve_ocp.hpp"
+#include "planner/solve_with.hpp"
 
 using namespace centaur;
 using namespace centaur::planner;
-
-namespace {
-
-SolveResult solveWith(const Ocp& ocp, SolverSettings s, const std::string& backend) {
-  s.backend = backend;
-  s.progress = false;
-  return solveOcp(ocp, s);
-}
-
-}  // namespace
+using centaur::test::solveWith;
 
 // The squat jump with the authors' model, mu 0.4, target 0.8 m: riccati reaches Ipopt's optimum to the acceptable
 // tolerances, then its line search fails there (the dual infeasibility stays ~1e-6 while mu is ~1e-9). Ipopt

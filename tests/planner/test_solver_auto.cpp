@@ -7,19 +7,11 @@
 #include "common/error.hpp"
 #include "planner/jump_problem.hpp"
 #include "planner/solve_ocp.hpp"
+#include "planner/solve_with.hpp"
 
 using namespace centaur;
 using namespace centaur::planner;
-
-namespace {
-
-SolveResult solveWith(const Ocp& ocp, SolverSettings s, const std::string& backend) {
-  s.backend = backend;
-  s.progress = false;
-  return solveOcp(ocp, s);
-}
-
-}  // namespace
+using centaur::test::solveWith;
 
 TEST(SolverAuto, KeepsRiccatisResultWhereItConverges) {
   const JumpProblem p(loadJumpConfig("half-squat-jump", "", {}));
