@@ -256,6 +256,18 @@ void BM_FootDynamicsHessian(benchmark::State& state) {
 }
 BENCHMARK(BM_FootDynamicsHessian);
 
+// Both from one recording, as the planner's derivatives evaluate them (the forward sweep carries all 25 directions).
+void BM_FootDynamicsJacobianHessian(benchmark::State& state) {
+  const FootPoint p;
+  double out[9], jac[9 * 25], hess[25 * 25];
+  for (auto _ : state) {
+    p.e.evalJacobianHessian(p.x, p.w, out, jac, hess);
+    benchmark::DoNotOptimize(jac);
+    benchmark::DoNotOptimize(hess);
+  }
+}
+BENCHMARK(BM_FootDynamicsJacobianHessian);
+
 // The same Hessian by nested forward AD (the previous method), for comparison.
 void BM_FootDynamicsHessianNestedForward(benchmark::State& state) {
   const FootPoint p;

@@ -29,6 +29,12 @@ class Element {
   virtual void evalJacobian(const double* in, double* out, double* jac) const = 0;
   /// hess: numInputs x numInputs (full, symmetric, row-major) of sum_j w[j] out[j].
   virtual void evalHessian(const double* in, const double* w, double* hess) const = 0;
+  /// evalJacobian and evalHessian at one point, sharing what they can (the same exact derivatives; the Jacobian
+  /// may round differently from evalJacobian's in the last bits).
+  virtual void evalJacobianHessian(const double* in, const double* w, double* out, double* jac, double* hess) const {
+    evalJacobian(in, out, jac);
+    evalHessian(in, w, hess);
+  }
   /// Declarations an element may make (the finite-difference tests check them): its Jacobian does not depend on
   /// the inputs (a linear function), or its Hessian does not (a quadratic). The Ocp then evaluates it once.
   virtual bool jacobianIsConstant() const { return false; }
@@ -65,6 +71,15 @@ class AdElement : public Element {
     rad::TapeVar y[NO];
     rad::record<Derived, NI, NO>(derived(), in, y);
     rad::hessianFromTape<NI, NN>(y, NO, w, hess);
+  }
+
+  /// One recording on the tape for both: its forward sweep carries all NI directions and gives the Jacobian
+  /// (instead of a second evaluation with NI-wide forward AD), the reverse sweep the Hessian as evalHessian's.
+  void evalJacobianHessian(const double* in, const double* w, double* out, double* jac, double* hess) const override {
+    rad::TapeVar y[NO];
+    rad::record<Derived, NI, NO>(derived(), in, y);
+    for (int j = 0; j < NO; ++j) out[j] = y[j].value();
+    rad::hessianFromTape<NI, NN>(y, NO, w, hess, jac);
   }
 
   /// The same weighted Hessian by nested forward AD (slower; for tests and benchmarks).

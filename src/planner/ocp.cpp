@@ -368,10 +368,11 @@ void Ocp::addConstraintTerm(const Instance& t, const double* z, const double* la
     s.w[j] = lambda[t.out_rows[j]];
     any = any || s.w[j] != 0.0;
   }
-  t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
   if (t.has_hessian && any) {
-    t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
+    t.element->evalJacobianHessian(s.in.data(), s.w.data(), s.out.data(), s.jac.data(), s.hess.data());
     scatterHessian(t, s.hess.data(), 1.0, hess);
+  } else {
+    t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
   }
   for (const auto& [k, slot] : t.jac_nz) jac[slot] += s.jac[k];
 }
@@ -380,10 +381,11 @@ void Ocp::addCostTerm(const Instance& t, const double* z, double sigma, Scratch&
   const int ni = static_cast<int>(t.in.size()), no = t.element->numOutputs();
   for (int i = 0; i < ni; ++i) s.in[i] = z[t.in[i]];
   for (int j = 0; j < no; ++j) s.w[j] = sigma * t.weight;
-  t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
   if (t.has_hessian && !t.const_hess && sigma != 0.0) {
-    t.element->evalHessian(s.in.data(), s.w.data(), s.hess.data());
+    t.element->evalJacobianHessian(s.in.data(), s.w.data(), s.out.data(), s.jac.data(), s.hess.data());
     scatterHessian(t, s.hess.data(), 1.0, hess);
+  } else {
+    t.element->evalJacobian(s.in.data(), s.out.data(), s.jac.data());
   }
   // The weighted gradient is rounded before it is added (a separate loop, which the compiler does not fuse into
   // a multiply-add): every addition into grad is then the same on any build, so moving a term between the

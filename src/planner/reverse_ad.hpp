@@ -152,12 +152,14 @@ void record(const F& f, const double* in, TapeVar* y) {
   f.compute(x, y);
 }
 
-/// Weighted Hessian of sum_j w_j y_j (the outputs recorded on the active tape), full NI x NI row-major.
-/// Only the first NN inputs may enter nonlinearly (the others' Hessian block must be zero).
-template <int NI, int NN>
-void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
-  using VecN = Eigen::Matrix<double, NN, 1>;
-  using Map = Eigen::Map<VecN>;
+namespace detail {
+/// The sweeps of hessianFromTape: tangents in ND >= NN input directions (the first NN are the nonlinear inputs;
+/// ND == NI also gives the Jacobian), then adjoints and their tangents in the NN nonlinear directions. A node's
+/// first NN tangent components are the same sums whatever ND is, so the Hessian does not depend on ND.
+template <int NI, int ND, int NN>
+void sweeps(const TapeVar* y, int no, const double* w, double* hess, double* jac) {
+  using VecD = Eigen::Matrix<double, ND, 1>;
+  using MapD = Eigen::Map<VecD>;
   const Tape& tape = activeTape();
   const int n = tape.size();
   SweepScratch& s = sweepScratch();
@@ -166,34 +168,39 @@ void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
     s.active.resize(n);
     s.hasbardot.resize(n);
   }
-  if (static_cast<int>(s.dot.size()) < n * NN) {
-    s.dot.resize(n * NN);
-    s.bardot.resize(n * NN);
-  }
+  if (static_cast<int>(s.dot.size()) < n * ND) s.dot.resize(n * ND);
+  if (static_cast<int>(s.bardot.size()) < n * NN) s.bardot.resize(n * NN);
   double* dot = s.dot.data();
   double* bar = s.bar.data();
   double* bardot = s.bardot.data();
-  char* active = s.active.data();
+  char* active = s.active.data();  // bit 0: depends on a nonlinear input; bit 1: on any input of the ND directions
   char* hasbd = s.hasbardot.data();
   const TapeNode* nodes = tape.nodes();
 
-  // Forward: tangents in the NN nonlinear input directions.
+  // Forward: tangents in the ND input directions.
   for (int v = 0; v < NI; ++v) {
-    active[v] = (v < NN);
-    if (v < NN) Map(dot + v * NN) = VecN::Unit(v);
+    active[v] = static_cast<char>((v < NN ? 1 : 0) | (v < ND ? 2 : 0));
+    if (v < ND) MapD(dot + v * ND) = VecD::Unit(v);
   }
   for (int v = NI; v < n; ++v) {
     const TapeNode& t = nodes[v];
-    const bool aa = active[t.a], ab = t.b >= 0 && active[t.b];
-    active[v] = aa || ab;
-    if (!active[v]) continue;
-    Map d(dot + v * NN);
+    const char fa = active[t.a], fb = t.b >= 0 ? active[t.b] : 0;
+    active[v] = static_cast<char>(fa | fb);
+    const bool aa = fa & 2, ab = fb & 2;
+    if (!aa && !ab) continue;
+    MapD d(dot + v * ND);
     if (aa && ab) {
-      d = t.da * Map(dot + t.a * NN) + t.db * Map(dot + t.b * NN);
+      d = t.da * MapD(dot + t.a * ND) + t.db * MapD(dot + t.b * ND);
     } else if (aa) {
-      d = t.da * Map(dot + t.a * NN);
+      d = t.da * MapD(dot + t.a * ND);
     } else {
-      d = t.db * Map(dot + t.b * NN);
+      d = t.db * MapD(dot + t.b * ND);
+    }
+  }
+  if (jac != nullptr) {
+    for (int j = 0; j < no; ++j) {
+      const bool has = y[j].i >= 0 && (active[y[j].i] & 2);
+      for (int i = 0; i < ND; ++i) jac[j * ND + i] = has ? dot[y[j].i * ND + i] : 0.0;
     }
   }
 
@@ -213,8 +220,8 @@ void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
     // terms are added in this order; a node's first contribution is assigned (0 + x == x), not added to zeros.
     auto addTo = [&](int p, double dp, double dpa, double dpb) __attribute__((always_inline)) {
       bar[p] += dp * bv;
-      const bool sa = t.curved && bv != 0.0 && dpa != 0.0 && active[t.a];
-      const bool sb = t.curved && bv != 0.0 && t.b >= 0 && dpb != 0.0 && active[t.b];
+      const bool sa = t.curved && bv != 0.0 && dpa != 0.0 && (active[t.a] & 1);
+      const bool sb = t.curved && bv != 0.0 && t.b >= 0 && dpb != 0.0 && (active[t.b] & 1);
       if (!bd && !sa && !sb) return;
       double* out = bardot + p * NN;
       bool first = !hasbd[p];
@@ -228,8 +235,8 @@ void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
         first = false;
       };
       if (bd) add(dp, bardot + v * NN);
-      if (sa) add(bv * dpa, dot + t.a * NN);
-      if (sb) add(bv * dpb, dot + t.b * NN);
+      if (sa) add(bv * dpa, dot + t.a * ND);
+      if (sb) add(bv * dpb, dot + t.b * ND);
     };
     if (t.b == t.a) {
       // never produced (x*x is recorded as a unary square), kept for safety
@@ -253,6 +260,20 @@ void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess) {
         hess[a * NI + b] = row[a];
       }
     }
+  }
+}
+}  // namespace detail
+
+/// Weighted Hessian of sum_j w_j y_j (the outputs recorded on the active tape), full NI x NI row-major, and, if
+/// `jac` is given, the Jacobian of the outputs (NO x NI, row-major) from the same tape: the forward sweep then
+/// carries all NI input directions (the NN nonlinear ones first, so the Hessian's sweeps read the same tangents).
+/// Only the first NN inputs may enter nonlinearly (the others' Hessian block must be zero).
+template <int NI, int NN>
+void hessianFromTape(const TapeVar* y, int no, const double* w, double* hess, double* jac = nullptr) {
+  if (jac != nullptr) {
+    detail::sweeps<NI, NI, NN>(y, no, w, hess, jac);
+  } else {
+    detail::sweeps<NI, NN, NN>(y, no, w, hess, nullptr);
   }
 }
 
