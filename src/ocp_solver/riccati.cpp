@@ -190,8 +190,13 @@ bool RiccatiSolver::stageCost(const std::vector<StageQp>& qp, int k) {
 }
 
 void RiccatiSolver::setParallel(bool on) {
-  if (on && !par_) par_ = std::make_unique<Parallel>();
+  if (on && !par_) par_ = std::make_unique<Parallel>(nullptr);
   if (!on) par_.reset();
+}
+
+void RiccatiSolver::setParallel(common::WorkerThread* shared) {
+  par_.reset();
+  if (shared) par_ = std::make_unique<Parallel>(shared);
 }
 
 void RiccatiSolver::runPair(const std::function<void()>& mine, const std::function<void()>& other) const {

@@ -75,6 +75,9 @@ class RiccatiSolver {
   /// Run each stage's row part (the rank split of its rows, which needs no cost) on a second thread, ahead of the
   /// cost parts (the reduced Hessians and the cost-to-go) on the calling one. The factors are bit-identical.
   void setParallel(bool on);
+  /// The same on a worker thread shared with other work of the caller (which must not use it while this solver
+  /// does; it must outlive the solver or a later setParallel).
+  void setParallel(common::WorkerThread* shared);
   bool parallel() const { return par_ != nullptr; }
   /// Run `mine` on the calling thread and `other` on the second one (when parallel; otherwise one after the
   /// other), and return when both have finished. For work between factorizations, e.g. two solves.
@@ -104,7 +107,10 @@ class RiccatiSolver {
  private:
   struct Stage;
   struct Parallel {
-    common::WorkerThread worker;
+    explicit Parallel(common::WorkerThread* shared)
+        : own(shared ? nullptr : std::make_unique<common::WorkerThread>()), worker(shared ? *shared : *own) {}
+    std::unique_ptr<common::WorkerThread> own;  // unless the thread is shared
+    common::WorkerThread& worker;
     std::atomic<int> filled{0};     // before_stage has run for stages filled..N
     std::atomic<int> rows_done{0};  // the row parts of stages rows_done..N are done
     std::atomic<bool> stop{false};  // the cost parts stopped early: skip the remaining row parts

@@ -224,6 +224,7 @@ void StageKktSolver::rowVector(const Row& row, const double* jac, const Eigen::V
 }
 
 void StageKktSolver::setPipelined(bool on) { riccati_.setParallel(on); }
+void StageKktSolver::setPipelined(common::WorkerThread* shared) { riccati_.setParallel(shared); }
 
 // The blocks of stage k that depend on the Jacobian only: which rows are exact, the dynamics [A B] (and the scale
 // of each dynamics row), C.

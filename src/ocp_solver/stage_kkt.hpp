@@ -60,6 +60,8 @@ class StageKktSolver final : public KktSolver {
   /// cost parts (RiccatiSolver::setParallel): the scattering of the sparse values and the rank splits of the rows
   /// then overlap the reduced Hessians. The results are bit-identical to the sequential ones.
   void setPipelined(bool on);
+  /// Pipelined on a worker thread shared with the caller's other work (null: not pipelined).
+  void setPipelined(common::WorkerThread* shared);
   /// Relative residual of the last solve (after refinement; of b after solveTwo).
   double lastResidual() const { return last_residual_; }
   int max_refinement = 3;

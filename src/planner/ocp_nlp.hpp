@@ -31,6 +31,10 @@ class OcpNlp final : public ocp_solver::Nlp {
   const std::vector<Ocp::TermRef>& callerTerms() const { return caller_terms_; }
   const std::vector<Ocp::TermRef>& workerTerms() const { return worker_terms_; }
 
+  /// The thread the second list runs on (null with one thread); the KKT solver may share it (the derivatives and
+  /// the factorization never run at the same time).
+  common::WorkerThread* worker() const { return worker_.get(); }
+
   ocp_solver::StageLayout stageLayout() const;
   std::vector<char> fixedVariables() const;
   std::vector<char> equalityRows() const;

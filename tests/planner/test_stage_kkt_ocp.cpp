@@ -66,6 +66,22 @@ void compareWithDense(const Ocp& ocp, unsigned seed, double dxv = 50.0, double l
   p.solve(rx, rc, px, py);
   EXPECT_EQ(px, sx);
   EXPECT_EQ(py, sy);
+  // Pipelined on the derivatives' worker thread (one second thread for both, as the planner runs), with derivative
+  // evaluations on that thread before and between the factorizations: the same bits again.
+  OcpNlp nlp2(ocp, true, nullptr, 2);
+  ASSERT_NE(nlp2.worker(), nullptr);
+  ocp_solver::StageKktSolver q(nlp2.pattern(), nlp2.stageLayout(), nlp2.fixedVariables(), eq);
+  q.setPipelined(nlp2.worker());
+  Eigen::VectorXd g2;
+  std::vector<double> jac2(jac.size()), hess2(hess.size());
+  for (int round = 0; round < 2; ++round) {
+    ASSERT_TRUE(nlp2.derivatives(z, 0.7, lambda, g2, jac2.data(), hess2.data()));
+    ASSERT_EQ(q.factor(hess.data(), jac.data(), dx, dc), ocp_solver::KktStatus::kOk);
+    Eigen::VectorXd qx, qy;
+    q.solve(rx, rc, qx, qy);
+    EXPECT_EQ(qx, sx);
+    EXPECT_EQ(qy, sy);
+  }
   // Two right-hand sides in one pass over the factors (the interior point's affine and centring steps): the same
   // bits as one after the other.
   Eigen::VectorXd rx2 = rx, rc2 = rc, sx2, sy2, ax, ay, bx, by;
