@@ -153,40 +153,25 @@ void record(const F& f, const double* in, TapeVar* y) {
 }
 
 namespace detail {
-/// The sweeps of hessianFromTape: tangents in ND >= NN input directions (the first NN are the nonlinear inputs;
-/// ND == NI also gives the Jacobian), then adjoints and their tangents in the NN nonlinear directions. A node's
-/// first NN tangent components are the same sums whatever ND is, so the Hessian does not depend on ND.
+// Node flags of the forward sweep: depends on a nonlinear input (the Hessian's directions); on any input of the
+// forward sweep's directions.
+constexpr char kNonlinear = 1, kTangent = 2;
+
+/// Forward: every node's tangent in ND >= NN input directions (the first NN are the nonlinear inputs, ND == NI
+/// covers them all), dot[v * ND + i], and its flags. A node's first NN components are the same sums whatever ND is.
 template <int NI, int ND, int NN>
-void sweeps(const TapeVar* y, int no, const double* w, double* hess, double* jac) {
+void forwardSweep(const TapeNode* nodes, int n, double* dot, char* active) {
   using VecD = Eigen::Matrix<double, ND, 1>;
   using MapD = Eigen::Map<VecD>;
-  const Tape& tape = activeTape();
-  const int n = tape.size();
-  SweepScratch& s = sweepScratch();
-  if (static_cast<int>(s.bar.size()) < n) {
-    s.bar.resize(n);
-    s.active.resize(n);
-    s.hasbardot.resize(n);
-  }
-  if (static_cast<int>(s.dot.size()) < n * ND) s.dot.resize(n * ND);
-  if (static_cast<int>(s.bardot.size()) < n * NN) s.bardot.resize(n * NN);
-  double* dot = s.dot.data();
-  double* bar = s.bar.data();
-  double* bardot = s.bardot.data();
-  char* active = s.active.data();  // bit 0: depends on a nonlinear input; bit 1: on any input of the ND directions
-  char* hasbd = s.hasbardot.data();
-  const TapeNode* nodes = tape.nodes();
-
-  // Forward: tangents in the ND input directions.
   for (int v = 0; v < NI; ++v) {
-    active[v] = static_cast<char>((v < NN ? 1 : 0) | (v < ND ? 2 : 0));
+    active[v] = static_cast<char>((v < NN ? kNonlinear : 0) | (v < ND ? kTangent : 0));
     if (v < ND) MapD(dot + v * ND) = VecD::Unit(v);
   }
   for (int v = NI; v < n; ++v) {
     const TapeNode& t = nodes[v];
     const char fa = active[t.a], fb = t.b >= 0 ? active[t.b] : 0;
     active[v] = static_cast<char>(fa | fb);
-    const bool aa = fa & 2, ab = fb & 2;
+    const bool aa = fa & kTangent, ab = fb & kTangent;
     if (!aa && !ab) continue;
     MapD d(dot + v * ND);
     if (aa && ab) {
@@ -197,14 +182,12 @@ void sweeps(const TapeVar* y, int no, const double* w, double* hess, double* jac
       d = t.db * MapD(dot + t.b * ND);
     }
   }
-  if (jac != nullptr) {
-    for (int j = 0; j < no; ++j) {
-      const bool has = y[j].i >= 0 && (active[y[j].i] & 2);
-      for (int i = 0; i < ND; ++i) jac[j * ND + i] = has ? dot[y[j].i * ND + i] : 0.0;
-    }
-  }
+}
 
-  // Reverse: adjoints and their tangents.
+/// Reverse: adjoints bar (seeded with w at the outputs) and their tangents bardot in the NN nonlinear directions.
+template <int NI, int ND, int NN>
+void reverseSweep(const TapeVar* y, int no, const double* w, const TapeNode* nodes, int n, const double* dot,
+                  const char* active, double* bar, double* bardot, char* hasbd) {
   for (int v = 0; v < n; ++v) {
     bar[v] = 0.0;
     hasbd[v] = 0;
@@ -220,8 +203,8 @@ void sweeps(const TapeVar* y, int no, const double* w, double* hess, double* jac
     // terms are added in this order; a node's first contribution is assigned (0 + x == x), not added to zeros.
     auto addTo = [&](int p, double dp, double dpa, double dpb) __attribute__((always_inline)) {
       bar[p] += dp * bv;
-      const bool sa = t.curved && bv != 0.0 && dpa != 0.0 && (active[t.a] & 1);
-      const bool sb = t.curved && bv != 0.0 && t.b >= 0 && dpb != 0.0 && (active[t.b] & 1);
+      const bool sa = t.curved && bv != 0.0 && dpa != 0.0 && (active[t.a] & kNonlinear);
+      const bool sb = t.curved && bv != 0.0 && t.b >= 0 && dpb != 0.0 && (active[t.b] & kNonlinear);
       if (!bd && !sa && !sb) return;
       double* out = bardot + p * NN;
       bool first = !hasbd[p];
@@ -246,7 +229,11 @@ void sweeps(const TapeVar* y, int no, const double* w, double* hess, double* jac
     addTo(t.a, t.da, t.daa, t.dab);
     if (t.b >= 0) addTo(t.b, t.db, t.dab, t.dbb);
   }
+}
 
+/// The full NI x NI Hessian from the inputs' adjoint tangents (rows of its NN nonlinear columns).
+template <int NI, int NN>
+void assembleHessian(const double* bardot, const char* hasbd, double* hess) {
   for (int k = 0; k < NI * NI; ++k) hess[k] = 0.0;
   for (int b = 0; b < NI; ++b) {
     if (!hasbd[b]) continue;
@@ -261,6 +248,31 @@ void sweeps(const TapeVar* y, int no, const double* w, double* hess, double* jac
       }
     }
   }
+}
+
+/// The sweeps of hessianFromTape with ND forward directions (ND == NI: the Jacobian as well).
+template <int NI, int ND, int NN>
+void sweeps(const TapeVar* y, int no, const double* w, double* hess, double* jac) {
+  const Tape& tape = activeTape();
+  const int n = tape.size();
+  SweepScratch& s = sweepScratch();
+  if (static_cast<int>(s.bar.size()) < n) {
+    s.bar.resize(n);
+    s.active.resize(n);
+    s.hasbardot.resize(n);
+  }
+  if (static_cast<int>(s.dot.size()) < n * ND) s.dot.resize(n * ND);
+  if (static_cast<int>(s.bardot.size()) < n * NN) s.bardot.resize(n * NN);
+  forwardSweep<NI, ND, NN>(tape.nodes(), n, s.dot.data(), s.active.data());
+  if (jac != nullptr) {
+    for (int j = 0; j < no; ++j) {
+      const bool has = y[j].i >= 0 && (s.active[y[j].i] & kTangent);
+      for (int i = 0; i < ND; ++i) jac[j * ND + i] = has ? s.dot[y[j].i * ND + i] : 0.0;
+    }
+  }
+  reverseSweep<NI, ND, NN>(y, no, w, tape.nodes(), n, s.dot.data(), s.active.data(), s.bar.data(), s.bardot.data(),
+                           s.hasbardot.data());
+  assembleHessian<NI, NN>(s.bardot.data(), s.hasbardot.data(), hess);
 }
 }  // namespace detail
 
