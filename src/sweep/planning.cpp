@@ -41,7 +41,7 @@ std::string describe(const data::DatabaseIndex& index, const data::GridEntry& e)
   return s.empty() ? std::string("defaults") : s;
 }
 
-/// Plans grid point `e` into `file`; returns its solve status.
+/// Plans grid point `e` into `file`; returns how its solve ended (status, backend, ...).
 data::SolveInfo planPoint(const SweepSpec& spec, const data::DatabaseIndex& index, const data::GridEntry& e,
                           const std::string& file) {
   const planner::JumpConfig cfg =
