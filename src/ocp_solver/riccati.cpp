@@ -28,7 +28,7 @@ void RiccatiSolver::Stage::solveNN(Eigen::Ref<Eigen::MatrixXd> rhs) const {
 void RiccatiSolver::eliminateRows(Stage& s) {
   const int nx = s.nx, nu = s.nu, n = nx + nu, m = s.m;
   equilibrateRows(s.Cs, s.row_scale);
-  s.lu.compute(s.Cs.rightCols(nu), opt_.rank_tol);
+  s.lu.compute(s.Cs.rightCols(nu), opt_.pivot_tol);
   const int r = s.lu.rank();
   s.rank = r;
   s.nv = nu - r;

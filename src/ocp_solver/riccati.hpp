@@ -52,8 +52,15 @@ struct RiccatiVectors {
 class RiccatiSolver {
  public:
   struct Options {
-    double rank_tol = 1e-10;    ///< pivot threshold on the equilibrated rows (each row scaled to max |entry| 1)
+    double rank_tol = 1e-10;    ///< a row passed back whose state part is at most this is dependent (zero eigenvalue)
     bool full_inertia = false;  ///< keep going past an indefinite reduced Hessian to count the whole inertia
+    /// Pivot threshold of the rank split by the controls, on the equilibrated rows (each row scaled to max |entry|
+    /// 1): a row whose control part, after the elimination of the rows before it, is at most this is passed back
+    /// to the previous stage as a row on the state, without that remainder. It bounds the growth of the
+    /// elimination (|E| <~ 1 / pivot_tol) at the price of a solve error of the order of pivot_tol, which
+    /// iterative refinement removes (StageKktSolver); with 1e-10 only rounding-level remainders are dropped.
+    /// docs/planner.md, "The pivot threshold of the stage rows".
+    double pivot_tol = 3e-4;
   };
   enum class Status { kOk, kWrongInertia, kSingular };
 
