@@ -13,6 +13,7 @@
 // Fixed variables become unit rows. Inequality rows (d_c > 0) are penalties added to the stage Hessians; equality
 // rows are exact, or penalties under a dual regularization (d_c > 0), except the dynamics, which stay exact.
 // The structure is analysed once; factor() scatters the values into preallocated stage blocks.
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -167,5 +168,15 @@ class StageKktSolver final : public KktSolver {
   CostFillScratch cost_fill_[2];              // of fillCost(), per thread
   std::vector<char> rows_filled_;             // per stage: fillRows() ran since the last factor()
 };
+
+// In the header: the solves (stage_kkt_solve.cpp) call it once per variable and right-hand side.
+inline int StageKktSolver::colOf(int stage, int var) const {
+  const int s = layout_.stage[var];
+  const int nc = static_cast<int>(carried_[stage].size());
+  if (s == stage) return layout_.is_state[var] ? local_[var] : nx_[stage] + nc + local_[var];
+  const auto& c = carried_[stage];
+  const auto it = std::lower_bound(c.begin(), c.end(), var);
+  return (it != c.end() && *it == var) ? nx_[stage] + static_cast<int>(it - c.begin()) : -1;
+}
 
 }  // namespace centaur::ocp_solver
