@@ -11,18 +11,22 @@ namespace {
 constexpr double kDeltaW0 = 1e-4, kDeltaWMin = 1e-20, kDeltaWMax = 1e20;
 constexpr double kKappaWMinus = 1.0 / 3.0, kKappaWPlus = 8.0, kKappaWPlusBar = 100.0;
 constexpr double kDeltaC = 1e-8, kKappaC = 0.25;
+constexpr double kFarAboveLast = 1e5;  // Ipopt: a trial this far above the last delta_w grows by kKappaWPlusBar
 constexpr int kDegenIters = 3;
 }  // namespace
 
 // Factor the KKT matrix with the smallest primal regularization delta_w that gives the inertia (n, m, 0);
-// dependent rows get the dual regularization delta_c. After kDegenIters consecutive iterations that needed a
-// delta_w, the first attempt already uses one (the unregularized matrix is then not tried). Ipopt takes this
-// shortcut only when the unregularized matrix was singular, not merely of the wrong inertia; the jump OCPs' KKT
-// matrices have the wrong inertia at almost every iteration, and always trying the unregularized matrix first
-// took the squat jump from 77 to 971 iterations, so ours triggers on the wrong inertia too. When no delta_w up to
-// its maximum gives the inertia, the rows are taken as dependent after all, as Ipopt does: delta_c, and delta_w
-// from zero again. On three points of docs/planner.md's half-squat-jump grid every delta_w up to 1e20 failed in
-// an early iteration; with delta_c the solves go on and converge.
+// dependent rows get the dual regularization delta_c. A failed trial multiplies delta_w by kKappaWPlus, or by
+// kKappaWPlusBar when there was no delta_w before or the trial is already kFarAboveLast times the last one (Ipopt's
+// rule: a matrix that needs far more than the last iterate's regularization gets there in fewer trials).
+// After kDegenIters consecutive iterations that needed a delta_w, the first attempt already uses one (the
+// unregularized matrix is then not tried). Ipopt takes this shortcut only when the unregularized matrix was
+// singular, not merely of the wrong inertia; the jump OCPs' KKT matrices have the wrong inertia at almost every
+// iteration, and always trying the unregularized matrix first took the squat jump from 77 to 971 iterations, so
+// ours triggers on the wrong inertia too. When no delta_w up to its maximum gives the inertia, the rows are taken
+// as dependent after all, as Ipopt does: delta_c, and delta_w from zero again. On three points of
+// docs/planner.md's half-squat-jump grid every delta_w up to 1e20 failed in an early iteration; with delta_c the
+// solves go on and converge.
 bool Ipm::factorWithCorrection() {
   sigma_s_.setZero(m_);
   for (int r = 0; r < m_; ++r) {
@@ -59,7 +63,8 @@ bool Ipm::factorWithCorrection() {
     if (delta_w_ == 0.0) {
       delta_w_ = delta_w_last_ == 0.0 ? kDeltaW0 : std::max(kDeltaWMin, kKappaWMinus * delta_w_last_);
     } else {
-      delta_w_ *= delta_w_last_ == 0.0 ? kKappaWPlusBar : kKappaWPlus;
+      const bool far = delta_w_last_ == 0.0 || delta_w_ > kFarAboveLast * delta_w_last_;
+      delta_w_ *= far ? kKappaWPlusBar : kKappaWPlus;
     }
     if (delta_w_ > kDeltaWMax) {
       if (delta_c_ > 0.0) break;

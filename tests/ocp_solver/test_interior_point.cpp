@@ -229,6 +229,81 @@ TEST(InteriorPoint, NonconvexEqualityNeedsAndGetsInertiaCorrection) {
   EXPECT_GT(r.stats.factorizations, r.stats.iterations + 1);  // some iterations were regularized
 }
 
+// A KKT solver that demands a primal regularization: the first factor() of each iteration and its retries report
+// the wrong inertia until the diagonal of the unbounded variable 0 (which carries delta_w alone) reaches that
+// iteration's requirement, then factor the matrix as it is. It records the delta_w of every trial. An iteration
+// starts with an unregularized factor() (until the method skips it after three regularized iterations); other
+// factorizations (the least-squares multiplier estimate, with a unit diagonal) pass through unrecorded.
+class DemandingKktSolver final : public KktSolver {
+ public:
+  DemandingKktSolver(const SparsePattern& p, std::vector<double> needed) : dense_(p, std::vector<char>(p.n, 0)),
+                                                                           needed_(std::move(needed)) {}
+  KktStatus factor(const double* h, const double* j, const Eigen::VectorXd& dx, const Eigen::VectorXd& dc) override {
+    if (dx[0] != 0.0) return dense_.factor(h, j, dx, dc);
+    trials.emplace_back();
+    return refactor(h, j, dx, dc);
+  }
+  KktStatus refactor(const double* h, const double* j, const Eigen::VectorXd& dx, const Eigen::VectorXd& dc) override {
+    trials.back().push_back(dx[0]);
+    const std::size_t it = trials.size() - 1;
+    if (it < needed_.size() && dx[0] < needed_[it]) return KktStatus::kWrongInertia;
+    return dense_.factor(h, j, dx, dc);
+  }
+  void solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc, Eigen::VectorXd& dx, Eigen::VectorXd& dy) override {
+    dense_.solve(rx, rc, dx, dy);
+  }
+  const std::vector<char>& alwaysExactRows() const override { return dense_.alwaysExactRows(); }
+  Inertia inertia() const override { return dense_.inertia(); }
+  std::vector<std::vector<double>> trials;  // per iteration, the delta_w of each factorization
+
+ private:
+  DenseKktSolver dense_;
+  std::vector<double> needed_;
+};
+
+TEST(InteriorPoint, ARegularizationFarAboveTheLastOneGrowsByAHundredAsIpopts) {
+  // min (x0 - 1)^2 + (x1 - 2)^2 with both variables free: a convex problem whose KKT solver nonetheless asks for
+  // delta_w >= 1e-3 in the first iteration and >= 1e6 in the second. First: 0, then Ipopt's first value 1e-4, then
+  // x100 (no earlier delta_w): 1e-2. Second: 0, then a third of the last (3.3e-3), then x8 per trial while a trial
+  // is at most 1e5 x the last (1e3), and x100 once it is beyond: ..., 874, 6991, 6.99e5, 6.99e7.
+  LambdaNlp q;
+  q.n = 2;
+  q.m = 0;
+  q.xl = Eigen::Vector2d(-kInf, -kInf);
+  q.xu = Eigen::Vector2d(kInf, kInf);
+  q.gl = q.gu = Eigen::VectorXd(0);
+  q.x0 = Eigen::Vector2d(5.0, -3.0);
+  q.f = [](const Eigen::VectorXd& x) { return (x[0] - 1) * (x[0] - 1) + (x[1] - 2) * (x[1] - 2); };
+  q.g = [](const Eigen::VectorXd&) { return Eigen::VectorXd(0); };
+  q.grad = [](const Eigen::VectorXd& x) { return Eigen::Vector2d(2 * (x[0] - 1), 2 * (x[1] - 2)); };
+  q.jac = [](const Eigen::VectorXd&) { return Eigen::MatrixXd(0, 2); };
+  q.hess = [](const Eigen::VectorXd&, double s, const Eigen::VectorXd&) {
+    return Eigen::MatrixXd(2 * s * Eigen::Matrix2d::Identity());
+  };
+  q.finalize();
+  DemandingKktSolver kkt(q.p, {1e-3, 1e6});
+  IpmOptions o;
+  o.max_iter = 2;
+  solveInteriorPoint(q, kkt, o);
+  ASSERT_GE(kkt.trials.size(), 2u);
+  const std::vector<double>& first = kkt.trials[0];
+  ASSERT_EQ(first.size(), 3u);
+  EXPECT_EQ(first[0], 0.0);
+  EXPECT_DOUBLE_EQ(first[1], 1e-4);
+  EXPECT_DOUBLE_EQ(first[2], 1e-2);
+  const std::vector<double>& second = kkt.trials[1];
+  ASSERT_GE(second.size(), 3u);
+  EXPECT_EQ(second[0], 0.0);
+  EXPECT_DOUBLE_EQ(second[1], 1e-2 / 3.0);
+  for (std::size_t t = 2; t < second.size(); ++t) {
+    const double growth = second[t - 1] > 1e5 * 1e-2 ? 100.0 : 8.0;
+    EXPECT_NEAR(second[t] / second[t - 1], growth, 1e-12 * growth) << "trial " << t;
+  }
+  EXPECT_GE(second.back(), 1e6);
+  EXPECT_LT(second[second.size() - 2], 1e6);
+  EXPECT_EQ(second.size(), 11u);  // only x8: 12 trials (..., 6991, 5.6e4, 4.5e5, 3.6e6)
+}
+
 TEST(InteriorPoint, FreeModeKeepsOnePercentOffTheBoundsWhileFarFromOptimal) {
   // min 1000 (x0 + x1)  s.t. x0 - x1 = 0, x >= 0, from (1, 1) with bound multipliers 1: the NLP error starts at
   // ~1000 (dual infeasibility), the affine-scaling step goes straight to the bounds and the quality function picks
