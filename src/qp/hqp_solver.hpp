@@ -74,6 +74,8 @@ class HqpSolver {
   double levelCost(int k, const Eigen::Ref<const Eigen::VectorXd>& x);
 
  private:
+  int checkStack(const Stack& stack, int n);  // configure: validate, collect tasks and constraints; max term rows
+  void sizeWorkspaces(int max_term_rows, const QpSettings& settings);  // configure: every buffer of solve()
   void assembleFirst();           // level 0: its rows in E_, the used columns, H and g on them
   QpStatus solveFirst();          // level 0 on the columns its rows or the constraints touch (after assembleFirst)
   QpStatus solveReduced(int k);   // level k >= 1 in the null space of the levels above
