@@ -120,6 +120,108 @@ void checkContactForces(const JumpConfig& c, const std::string& label) {
   }
 }
 
+// horizon.*: the intervals, take-off and landing, the bounds and the first guess of the step sizes.
+void readHorizon(YamlReader& r, JumpConfig& c) {
+  auto h = r.child("horizon");
+  h.get("intervals", c.horizon.intervals, 4, 200);
+  h.get("takeoff", c.horizon.takeoff, 1, c.horizon.intervals - 3);
+  h.get("landing", c.horizon.landing, c.horizon.takeoff + 2, c.horizon.intervals - 1);
+  h.get("dt_min", c.horizon.dt_min, 1e-3, 1.0);
+  h.get("dt_max", c.horizon.dt_max, 1e-3, 1.0);
+  if (c.horizon.dt_min > c.horizon.dt_max) {
+    h.fail("dt_min", "must not exceed horizon.dt_max (" + std::to_string(c.horizon.dt_max) + " s)");
+  }
+  c.horizon.dt_init = 0.5 * (c.horizon.dt_min + c.horizon.dt_max);
+  h.get("dt_init", c.horizon.dt_init, c.horizon.dt_min, c.horizon.dt_max);
+  h.finish();
+}
+
+// feet, wheel_radius and workspace.*; the initial stance must lie inside the workspace box.
+void readStance(YamlReader& r, JumpConfig& c) {
+  c.feet = {Eigen::Vector3d(0.35, 0.35, -0.6408), Eigen::Vector3d(0.35, -0.35, -0.6408),
+              Eigen::Vector3d(-0.35, 0.35, -0.6408), Eigen::Vector3d(-0.35, -0.35, -0.6408)};
+  r.getPoints("feet", c.feet.data(), 4, -2.0, 2.0, "foot points in the waist frame (FL, FR, RL, RR), in m,");
+  r.get("wheel_radius", c.wheel_radius, 0.0, 1.0);
+
+  auto w = r.child("workspace");
+  w.getInterval("front_x", c.workspace.front_x, -2, 2);
+  w.getInterval("rear_x", c.workspace.rear_x, -2, 2);
+  w.getInterval("left_y", c.workspace.left_y, -2, 2);
+  w.getInterval("right_y", c.workspace.right_y, -2, 2);
+  w.getInterval("z", c.workspace.z, -2, 2);
+  w.get("reach", c.workspace.reach, 0.0, 2.0);
+  w.finish();
+  for (int i = 0; i < 4; ++i) {
+    const auto& x = (i < 2) ? c.workspace.front_x : c.workspace.rear_x;
+    const auto& y = (i % 2 == 0) ? c.workspace.left_y : c.workspace.right_y;
+    const Eigen::Vector3d& p = c.feet[i];
+    if (p.x() < x[0] || p.x() > x[1] || p.y() < y[0] || p.y() > y[1] || p.z() < c.workspace.z[0] || p.z() > c.workspace.z[1]) {
+      r.fail("feet", "initial foot " + std::to_string(i) + " lies outside the workspace box (workspace.*)");
+    }
+  }
+}
+
+// contact.*, limits.* and target.*.
+void readContactLimitsTarget(YamlReader& r, JumpConfig& c) {
+  auto ct = r.child("contact");
+  ct.get("friction", c.contact.friction, {"pyramid", "cone"});
+  ct.get("mu", c.contact.mu, 1e-3, 10.0);
+  ct.get("mu_wall", c.contact.mu_wall, 1e-3, 10.0);
+  ct.get("force_threshold", c.contact.force_threshold, 0.0, 1e4);
+  ct.get("force_max", c.contact.force_max, 1.0, 1e6);
+  ct.get("touchdown", c.contact.touchdown, {"same_position", "free"});
+  ct.finish();
+
+  auto l = r.child("limits");
+  l.get("leg_force", c.limits.leg_force, 1.0, 1e6);
+  l.get("velocity", c.limits.velocity, 0.1, 1e4);
+  l.get("acceleration", c.limits.acceleration, 0.1, 1e5);
+  l.finish();
+
+  auto t = r.child("target");
+  t.get("height", c.target_height, 0.0, 5.0);
+  t.get("wall_distance", c.wall_distance, 0.0, 1.0);
+  t.get("wall_height", c.wall_height, 0.0, 2.0);
+  t.finish();
+}
+
+// cost.*: the weights of the cost's terms.
+void readCost(YamlReader& r, JumpConfig& c) {
+  auto k = r.child("cost");
+  k.get("base_height", c.cost.base_height, 0.0, 1e6);
+  k.get("base_velocity", c.cost.base_velocity, 0.0, 1e6);
+  k.get("joint_velocity", c.cost.joint_velocity, 0.0, 1e6);
+  k.get("force_rate", c.cost.force_rate, 0.0, 1e6);
+  k.get("acceleration_rate", c.cost.acceleration_rate, 0.0, 1e6);
+  k.get("base_orientation", c.cost.base_orientation, 0.0, 1e6);
+  k.get("base_pose", c.cost.base_pose, 0.0, 1e6);
+  k.get("stance_foot_velocity", c.cost.stance_foot_velocity, 0.0, 1e8);
+  k.get("velocity_regularization", c.cost.velocity_regularization, 0.0, 1e6);
+  k.get("base_angular_velocity", c.cost.base_angular_velocity, 0.0, 1e8);
+  k.finish();
+}
+
+// A squat jump whose target is below the start, or unreachable by construction, is bad input.
+void checkSquatTarget(const JumpConfig& c, const std::string& label) {
+  const double z0 = c.initialWaistHeight();
+  if (c.target_height <= z0) {
+    throw InputError(label, "target.height", "target " + std::to_string(c.target_height) +
+                                                 " m must be above the initial waist height " + std::to_string(z0) + " m");
+  }
+  // Optimistic upper bound of the reachable apex: take-off at full leg extension with the speed that the
+  // leg forces can give over the whole extension stroke (work-energy), then a ballistic rise.
+  const double m = c.model.totalMass(), g = c.model.gravity;
+  const double stroke = c.workspace.z[1] - c.workspace.z[0];
+  const double work = (4.0 * c.limits.leg_force - m * g) * stroke;
+  const double v2 = work > 0 ? 2.0 * work / m : 0.0;
+  const double apex_max = c.wheel_radius - c.workspace.z[0] + v2 / (2.0 * g);
+  if (c.target_height > apex_max) {
+    throw InputError(label, "target.height", "target " + std::to_string(c.target_height) +
+                                                 " m is unreachable: with the workspace and leg-force limits the waist cannot rise above about " +
+                                                 std::to_string(apex_max) + " m");
+  }
+}
+
 }  // namespace
 
 std::string defaultJumpYaml(const std::string& primitive) {
@@ -153,103 +255,16 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   YamlReader r(root, label);
   r.get("primitive", c.primitive, {"squat-jump", "half-squat-jump"});
   c.model = model::readTemplateParams(r.child("model"));
-
-  auto h = r.child("horizon");
-  h.get("intervals", c.horizon.intervals, 4, 200);
-  h.get("takeoff", c.horizon.takeoff, 1, c.horizon.intervals - 3);
-  h.get("landing", c.horizon.landing, c.horizon.takeoff + 2, c.horizon.intervals - 1);
-  h.get("dt_min", c.horizon.dt_min, 1e-3, 1.0);
-  h.get("dt_max", c.horizon.dt_max, 1e-3, 1.0);
-  if (c.horizon.dt_min > c.horizon.dt_max) {
-    h.fail("dt_min", "must not exceed horizon.dt_max (" + std::to_string(c.horizon.dt_max) + " s)");
-  }
-  c.horizon.dt_init = 0.5 * (c.horizon.dt_min + c.horizon.dt_max);
-  h.get("dt_init", c.horizon.dt_init, c.horizon.dt_min, c.horizon.dt_max);
-  h.finish();
-
-  c.feet = {Eigen::Vector3d(0.35, 0.35, -0.6408), Eigen::Vector3d(0.35, -0.35, -0.6408),
-              Eigen::Vector3d(-0.35, 0.35, -0.6408), Eigen::Vector3d(-0.35, -0.35, -0.6408)};
-  r.getPoints("feet", c.feet.data(), 4, -2.0, 2.0, "foot points in the waist frame (FL, FR, RL, RR), in m,");
-  r.get("wheel_radius", c.wheel_radius, 0.0, 1.0);
-
-  auto w = r.child("workspace");
-  w.getInterval("front_x", c.workspace.front_x, -2, 2);
-  w.getInterval("rear_x", c.workspace.rear_x, -2, 2);
-  w.getInterval("left_y", c.workspace.left_y, -2, 2);
-  w.getInterval("right_y", c.workspace.right_y, -2, 2);
-  w.getInterval("z", c.workspace.z, -2, 2);
-  w.get("reach", c.workspace.reach, 0.0, 2.0);
-  w.finish();
-  // The initial stance must lie inside the workspace box.
-  for (int i = 0; i < 4; ++i) {
-    const auto& x = (i < 2) ? c.workspace.front_x : c.workspace.rear_x;
-    const auto& y = (i % 2 == 0) ? c.workspace.left_y : c.workspace.right_y;
-    const Eigen::Vector3d& p = c.feet[i];
-    if (p.x() < x[0] || p.x() > x[1] || p.y() < y[0] || p.y() > y[1] || p.z() < c.workspace.z[0] || p.z() > c.workspace.z[1]) {
-      r.fail("feet", "initial foot " + std::to_string(i) + " lies outside the workspace box (workspace.*)");
-    }
-  }
-
-  auto ct = r.child("contact");
-  ct.get("friction", c.contact.friction, {"pyramid", "cone"});
-  ct.get("mu", c.contact.mu, 1e-3, 10.0);
-  ct.get("mu_wall", c.contact.mu_wall, 1e-3, 10.0);
-  ct.get("force_threshold", c.contact.force_threshold, 0.0, 1e4);
-  ct.get("force_max", c.contact.force_max, 1.0, 1e6);
-  ct.get("touchdown", c.contact.touchdown, {"same_position", "free"});
-  ct.finish();
-
-  auto l = r.child("limits");
-  l.get("leg_force", c.limits.leg_force, 1.0, 1e6);
-  l.get("velocity", c.limits.velocity, 0.1, 1e4);
-  l.get("acceleration", c.limits.acceleration, 0.1, 1e5);
-  l.finish();
-
-  auto t = r.child("target");
-  t.get("height", c.target_height, 0.0, 5.0);
-  t.get("wall_distance", c.wall_distance, 0.0, 1.0);
-  t.get("wall_height", c.wall_height, 0.0, 2.0);
-  t.finish();
-
-  auto k = r.child("cost");
-  k.get("base_height", c.cost.base_height, 0.0, 1e6);
-  k.get("base_velocity", c.cost.base_velocity, 0.0, 1e6);
-  k.get("joint_velocity", c.cost.joint_velocity, 0.0, 1e6);
-  k.get("force_rate", c.cost.force_rate, 0.0, 1e6);
-  k.get("acceleration_rate", c.cost.acceleration_rate, 0.0, 1e6);
-  k.get("base_orientation", c.cost.base_orientation, 0.0, 1e6);
-  k.get("base_pose", c.cost.base_pose, 0.0, 1e6);
-  k.get("stance_foot_velocity", c.cost.stance_foot_velocity, 0.0, 1e8);
-  k.get("velocity_regularization", c.cost.velocity_regularization, 0.0, 1e6);
-  k.get("base_angular_velocity", c.cost.base_angular_velocity, 0.0, 1e8);
-  k.finish();
-
+  readHorizon(r, c);
+  readStance(r, c);
+  readContactLimitsTarget(r, c);
+  readCost(r, c);
   auto s = r.child("solver");
   readSolverSettings(s, c.solver);
   r.finish();
 
   checkContactForces(c, label);
-
-  // A squat jump whose target is below the start, or unreachable by construction, is bad input.
-  if (c.primitive == "squat-jump") {
-    const double z0 = c.initialWaistHeight();
-    if (c.target_height <= z0) {
-      throw InputError(label, "target.height", "target " + std::to_string(c.target_height) +
-                                                   " m must be above the initial waist height " + std::to_string(z0) + " m");
-    }
-    // Optimistic upper bound of the reachable apex: take-off at full leg extension with the speed that the
-    // leg forces can give over the whole extension stroke (work-energy), then a ballistic rise.
-    const double m = c.model.totalMass(), g = c.model.gravity;
-    const double stroke = c.workspace.z[1] - c.workspace.z[0];
-    const double work = (4.0 * c.limits.leg_force - m * g) * stroke;
-    const double v2 = work > 0 ? 2.0 * work / m : 0.0;
-    const double apex_max = c.wheel_radius - c.workspace.z[0] + v2 / (2.0 * g);
-    if (c.target_height > apex_max) {
-      throw InputError(label, "target.height", "target " + std::to_string(c.target_height) +
-                                                   " m is unreachable: with the workspace and leg-force limits the waist cannot rise above about " +
-                                                   std::to_string(apex_max) + " m");
-    }
-  }
+  if (c.primitive == "squat-jump") checkSquatTarget(c, label);
   return c;
 }
 

@@ -24,7 +24,6 @@ void step(const double* q, const double* nu, const double* nu_dot, double h, dou
 }  // namespace
 
 data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sample_dt) const {
-  const auto& P = cfg_.model;
   data::Primitive out;
   out.name = cfg_.primitive;
   out.solve = result.info;
@@ -35,8 +34,15 @@ data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sampl
     out.mult_lower = result.z_l.cwiseMax(0.0);
     out.mult_upper = result.z_u.cwiseMax(0.0);
   }
-  const int nx = kNq + kNv, nu_c = ocp_.nu();
+  fillKnots(z, out);
+  const ResampleErrors errors = resample(sample_dt, out);
+  fillMetadata(z, sample_dt, errors, out);
+  return out;
+}
 
+// The knots: states on the nodes, controls and durations on the intervals, and the times of the nodes.
+void JumpProblem::fillKnots(const Eigen::VectorXd& z, data::Primitive& out) const {
+  const int nx = kNq + kNv, nu_c = ocp_.nu();
   out.knot_x.resize(N_ + 1, nx);
   out.knot_u.resize(N_, nu_c);
   out.knot_dt.resize(N_);
@@ -50,9 +56,14 @@ data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sampl
       out.knot_t[k + 1] = out.knot_t[k] + out.knot_dt[k];
     }
   }
+}
+
+// The samples every sample_dt from the knots (out.knot_*), integrated with the OCP's dynamics; the errors are the
+// end state against the last knot and the largest under-actuation residual of the inverse dynamics.
+JumpProblem::ResampleErrors JumpProblem::resample(double sample_dt, data::Primitive& out) const {
+  const auto& P = cfg_.model;
   const double T = out.knot_t[N_];
   const int S = static_cast<int>(std::floor(T / sample_dt + 1e-9)) + 1;
-
   out.t.resize(S);
   out.q.resize(S, kNq);
   out.nu.resize(S, kNv);
@@ -71,7 +82,7 @@ data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sampl
   Eigen::Matrix<double, kNv, 1> nu = out.knot_x.row(0).tail(kNv).transpose();
   double t = 0.0;
   int k = 0;  // current interval
-  double max_residual = 0.0;
+  ResampleErrors errors;
   auto control = [&](int kk, int offset, int n) { return out.knot_u.row(kk).segment(offset, n).transpose(); };
 
   auto integrateTo = [&](double target) {
@@ -99,7 +110,7 @@ data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sampl
     const Eigen::Matrix<double, 12, 1> F = control(kk, kNv, 12);
     Eigen::Matrix<double, kNv, 1> tau_full;
     model::inverseDynamics(P, q.data(), nu.data(), a.data(), F.data(), tau_full.data());
-    max_residual = std::max(max_residual, tau_full.head<6>().cwiseAbs().maxCoeff());
+    errors.max_residual = std::max(errors.max_residual, tau_full.head<6>().cwiseAbs().maxCoeff());
 
     const Eigen::Matrix3d R = model::quatToRotation(q.data() + 3);
     out.t[j] = tj;
@@ -121,11 +132,16 @@ data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sampl
   }
   // End state of the resampled trajectory against the last knot.
   integrateTo(T);
-  Eigen::VectorXd x_end(nx);
+  Eigen::VectorXd x_end(kNq + kNv);
   x_end << q, nu;
-  const double end_error = (x_end - out.knot_x.row(N_).transpose()).cwiseAbs().maxCoeff();
+  errors.end_error = (x_end - out.knot_x.row(N_).transpose()).cwiseAbs().maxCoeff();
+  return errors;
+}
 
-  // Metadata.
+// The configuration, the model's and the problem's parameters, the resampling's errors and the cost's terms.
+void JumpProblem::fillMetadata(const Eigen::VectorXd& z, double sample_dt, const ResampleErrors& errors,
+                               data::Primitive& out) const {
+  const auto& P = cfg_.model;
   out.config_yaml = toYamlString(cfg_.effective);
   out.strings["model_preset"] = P.preset;
   out.strings["foot_point"] = "wheel centre";
@@ -141,14 +157,14 @@ data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sampl
   out.scalars["wheel_radius"] = cfg_.wheel_radius;
   out.scalars["ground_z"] = 0.0;
   out.scalars["sample_dt"] = sample_dt;
-  out.scalars["duration"] = T;
+  out.scalars["duration"] = out.knot_t[N_];
   out.scalars["intervals"] = N_;
   out.scalars["takeoff_interval"] = cfg_.horizon.takeoff;
   out.scalars["landing_interval"] = cfg_.horizon.landing;
   out.scalars["mu"] = cfg_.contact.mu;
   out.scalars["leg_force_max"] = cfg_.limits.leg_force;
-  out.scalars["resampled_end_state_error"] = end_error;
-  out.scalars["resampled_max_underactuation_residual"] = max_residual;
+  out.scalars["resampled_end_state_error"] = errors.end_error;
+  out.scalars["resampled_max_underactuation_residual"] = errors.max_residual;
   if (cfg_.primitive == "squat-jump") out.scalars["target_height"] = cfg_.target_height;
   if (cfg_.primitive == "half-squat-jump") {
     out.scalars["wall_x"] = cfg_.wallX();
@@ -162,7 +178,6 @@ data::Primitive JumpProblem::toPrimitive(const SolveResult& result, double sampl
   out.vectors["hip_offsets"] = hips;
   const auto costs = ocp_.costBreakdown(z.data());
   for (const auto& [name, v] : costs) out.scalars["cost_" + name] = v;
-  return out;
 }
 
 }  // namespace centaur::planner

@@ -51,6 +51,14 @@ class JumpProblem {
   std::vector<int> idx(const char* var, int k, int first, int count) const;
 
  private:
+  struct ResampleErrors {
+    double end_error = 0.0;     ///< max |resampled end state - last knot|
+    double max_residual = 0.0;  ///< largest under-actuation residual of the inverse dynamics at the samples
+  };
+  void fillKnots(const Eigen::VectorXd& z, data::Primitive& out) const;
+  ResampleErrors resample(double sample_dt, data::Primitive& out) const;
+  void fillMetadata(const Eigen::VectorXd& z, double sample_dt, const ResampleErrors& errors,
+                    data::Primitive& out) const;
   void buildVariables();
   void buildDynamics();
   void buildContacts();
