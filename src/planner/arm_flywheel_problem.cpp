@@ -33,8 +33,17 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
   right.ee_frame = "ball2_tip";
   const model::SerialChain rchain = model::chainFromMjcf(mjcf, right);
   if (chain_.dof() != kArmDof) throw InputError(mjcf + ": the arm must have 7 joints");
+  buildLimits(rchain);
+  buildVariables();
+  buildGuess();
+  buildConstraints();
+  buildCosts();
+  ocp_.finalize();
+}
 
-  // Limits: the left arm's, intersected with the mirrored right arm's (q_right = s q_left).
+// The left arm's limits intersected with the mirrored right arm's (q_right = s q_left), then the configured
+// margins and scales.
+void ArmFlywheelProblem::buildLimits(const model::SerialChain& rchain) {
   const auto s = data::armMirrorSigns();
   const int n = kArmDof;
   q_lo_model_.resize(n), q_hi_model_.resize(n), qd_max_model_.resize(n), tau_max_model_.resize(n);
@@ -56,10 +65,11 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
     qd_max_[i] = cfg_.velocity_scale * qd_max_model_[i];
     tau_max_[i] = cfg_.torque_scale * tau_max_model_[i];
   }
-  // The torque element normalises by the chain's tau_max: give it the effective bound.
-  model::SerialChain tchain = chain_;
-  for (int i = 0; i < n; ++i) tchain.links[i].tau_max = tau_max_[i];
+}
 
+// The states q, qd on the nodes and the control qdd on the intervals: bounds and scales.
+void ArmFlywheelProblem::buildVariables() {
+  const int n = kArmDof;
   const int N = cfg_.intervals;
   const double h = cfg_.period / N;
   ocp_.addState("q", n);
@@ -79,9 +89,12 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
   ocp_.setScale("q", constant(n, 1.0));
   ocp_.setScale("qd", constant(n, 2.0));
   ocp_.setScale("qdd", constant(n, 10.0));
+}
 
-  // Initial guess: a loop of shoulder pitch and elbow (a quarter period apart) around the home posture,
-  // clipped into the bounds. Its direction is arbitrary; the solver picks the one that maximises h_y.
+// Initial guess: a loop of shoulder pitch and elbow (a quarter period apart) around the home posture,
+// clipped into the bounds. Its direction is arbitrary; the solver picks the one that maximises h_y.
+void ArmFlywheelProblem::buildGuess() {
+  const int n = kArmDof, N = cfg_.intervals;
   const Eigen::VectorXd qh = chain_.homePosture();
   for (int k = 0; k <= N; ++k) {
     const double ph = 2.0 * M_PI * k / N, w = 2.0 * M_PI / cfg_.period;
@@ -93,8 +106,15 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
     ocp_.setGuess("qd", k, qd);
     if (k < N) ocp_.setGuess("qdd", k, qdd);
   }
+}
 
-  // Continuity (DMS).
+// Continuity (DMS), periodicity x_N = x_0, torques, the workspace box and the arm's CoM.
+void ArmFlywheelProblem::buildConstraints() {
+  const int n = kArmDof, N = cfg_.intervals;
+  const double h = cfg_.period / N;
+  // The torque element normalises by the chain's tau_max: give it the effective bound.
+  model::SerialChain tchain = chain_;
+  for (int i = 0; i < n; ++i) tchain.links[i].tau_max = tau_max_[i];
   auto cont = std::make_shared<ArmContinuityElement>(h);
   for (int k = 0; k < N; ++k) {
     const auto& c = ocp_.addConstraint("continuity", k, constant(2 * n, 0.0), constant(2 * n, 0.0));
@@ -125,14 +145,18 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
   // Arm CoM x near its home value (the body's balance point moves less with the phase).
   if (cfg_.com_x_offset < 2.0) {
     auto com = std::make_shared<ArmComElement>(chain_);
-    const double cx = model::chainCom(chain_, qh.data()).x();
+    const double cx = model::chainCom(chain_, chain_.homePosture().data()).x();
     const Eigen::Vector3d lo(cx - cfg_.com_x_offset, -kBig, -kBig), hi(cx + cfg_.com_x_offset, kBig, kBig);
     for (int k = 0; k < N; ++k) {
       const auto& cc = ocp_.addConstraint("arm_com", k, lo, hi);
       ocp_.addTerm(cc, com, ocp_.indices("q", k));
     }
   }
-  // Cost (nodes 0..N-1).
+}
+
+// Cost (nodes 0..N-1): the momentum term, joint velocities and accelerations.
+void ArmFlywheelProblem::buildCosts() {
+  const int N = cfg_.intervals;
   auto mom = std::make_shared<ArmMomentumCostElement>(chain_, Eigen::Vector3d::UnitY(), cfg_.momentum_mode == "tracking",
                                                       cfg_.h_d);
   auto vel = std::make_shared<SquaredNorm<kArmDof>>("joint_velocity");
@@ -142,7 +166,6 @@ ArmFlywheelProblem::ArmFlywheelProblem(const ArmFlywheelConfig& config) : cfg_(c
     if (cfg_.gamma_qd > 0) ocp_.addCost("joint_velocity", vel, ocp_.indices("qd", k), cfg_.gamma_qd);
     if (cfg_.gamma_qdd > 0) ocp_.addCost("joint_acceleration", acc, ocp_.indices("qdd", k), cfg_.gamma_qdd);
   }
-  ocp_.finalize();
 }
 
 SolveResult ArmFlywheelProblem::solve(bool progress) const {

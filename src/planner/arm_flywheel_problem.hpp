@@ -35,6 +35,11 @@ class ArmFlywheelProblem {
   data::ArmTrajectory toTrajectory(const SolveResult& result) const;
 
  private:
+  void buildLimits(const model::SerialChain& rchain);
+  void buildVariables();
+  void buildGuess();
+  void buildConstraints();
+  void buildCosts();
   ArmFlywheelConfig cfg_;
   model::SerialChain chain_;
   Eigen::VectorXd q_lo_, q_hi_, qd_max_, tau_max_;
