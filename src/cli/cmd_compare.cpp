@@ -200,6 +200,155 @@ std::vector<NamedPath> compareOutputs(const CompareArgs& a, bool flywheel) {
   return out;
 }
 
+// One (jump, stabilizer) run of compare and its log.
+struct ComparePair {
+  std::string jump, mode, log;
+};
+
+// What the completed runs give the table, the pitch plot and the report.
+struct CompareOutcome {
+  std::vector<sim::CompareRow> rows;
+  std::vector<std::string> names;  // labels of the completed runs, in order
+  std::vector<sim::PitchSeries> series;
+  std::vector<report::RunSource> report_runs;
+  std::vector<PitchPanel> panels;
+  bool failed = false;
+};
+
+// A staged output's path as it will be once committed ("" stays "").
+std::string finalName(const StagedOutputs& staged, const std::string& path) {
+  return path.empty() ? path : staged.finalPath(fs::path(path).filename().string());
+}
+
+// Every (jump, stabilizer) pair as a batch run logging into the staging directory.
+std::vector<sim::BatchRun> compareRuns(const CompareArgs& a, const std::vector<const sim::Scenario*>& scenarios,
+                                       const std::string& primitives, const std::string& flywheel,
+                                       const StagedOutputs& staged, std::vector<ComparePair>& pairs) {
+  std::vector<sim::BatchRun> runs;
+  for (std::size_t j = 0; j < a.jumps.size(); ++j) {
+    for (const auto& mode : a.modes) {
+      ComparePair p{a.jumps[j], mode, staged.path(a.jumps[j] + "-" + mode + ".h5")};
+      sim::BatchRun r;
+      r.label = p.jump + "/" + mode;
+      r.scenario = p.jump;
+      r.options = {{"primitive", primitives}, {"stabilizer", mode}};
+      const bool takes_flywheel = findOption(*scenarios[j], "flywheel") != nullptr;
+      if (takes_flywheel && !flywheel.empty()) r.options["flywheel"] = flywheel;
+      r.overrides = a.sets;
+      r.outputs.log_path = p.log;
+      // Without a trajectory file the OCP stabilizer may solve its arm OCP (Ipopt + MUMPS, not thread-safe)
+      // while it is set up: such runs go one at a time.
+      if (mode == "ocp" && !r.options.count("flywheel")) r.exclusive_group = "ipopt";
+      runs.push_back(std::move(r));
+      pairs.push_back(std::move(p));
+    }
+  }
+  return runs;
+}
+
+// The runs on `threads` threads, each reported on stderr as it starts and ends.
+std::vector<sim::BatchResult> runCompareBatch(const std::vector<sim::BatchRun>& runs, int jobs, int threads,
+                                              double& wall_s) {
+  std::fprintf(stderr, "compare: %zu runs on %d thread%s\n", runs.size(), threads, threads == 1 ? "" : "s");
+  sim::BatchCallbacks cb;
+  cb.started = [&](std::size_t i) { std::fprintf(stderr, "compare: started %s\n", runs[i].label.c_str()); };
+  cb.finished = [&](std::size_t i, const sim::BatchResult& r, std::size_t done, std::size_t total) {
+    if (r.status == sim::BatchResult::Status::Completed) {
+      std::fprintf(stderr, "compare: [%zu/%zu] %s: %s, peak pitch %.2f deg, %.1f s simulated in %.1f s (x%.2f)\n",
+                   done, total, runs[i].label.c_str(), r.summary.outcome.c_str(), r.summary.peak_pitch_deg,
+                   r.summary.duration_s, r.elapsed_s, r.summary.real_time_factor);
+    } else {
+      std::fprintf(stderr, "compare: [%zu/%zu] %s FAILED: %s\n", done, total, runs[i].label.c_str(), r.error.c_str());
+    }
+  };
+  const auto t_runs = std::chrono::steady_clock::now();
+  std::vector<sim::BatchResult> results = sim::runBatch(runs, jobs, cb);
+  wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_runs).count();
+  std::fprintf(stderr, "compare: %zu runs in %.1f s wall time\n", runs.size(), wall_s);
+  return results;
+}
+
+// The table's rows, the pitch histories and the report's runs of the completed runs (their logs and configs go
+// into `files`); InputError, with nothing written, if a run had bad input.
+CompareOutcome collectCompare(const CompareArgs& a, const std::vector<ComparePair>& pairs,
+                              const std::vector<sim::BatchRun>& runs, const std::vector<sim::BatchResult>& results,
+                              const std::string& primitives, const StagedOutputs& staged,
+                              std::vector<std::string>& files) {
+  CompareOutcome o;
+  bool bad_input = false;
+  for (const auto& jump : a.jumps) o.panels.push_back({jump, {}});
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const sim::BatchResult& r = results[i];
+    const bool ok = r.status == sim::BatchResult::Status::Completed;
+    bad_input = bad_input || r.status == sim::BatchResult::Status::BadInput;
+    o.failed = o.failed || !ok;
+    o.rows.push_back(sim::makeCompareRow(pairs[i].jump, pairs[i].mode, r, ok ? finalName(staged, pairs[i].log) : ""));
+    if (!ok) continue;
+    files.insert(files.end(), r.summary.files.begin(), r.summary.files.end());
+    for (const auto& f : r.summary.files) files.push_back(sim::configPathFor(f));
+    try {
+      o.series.push_back(sim::readLogPitch(pairs[i].log));
+    } catch (const InputError& e) {  // our own log unreadable: a runtime failure, not the user's input
+      throw RuntimeError(e.what());
+    }
+    o.names.push_back(runs[i].label);
+    o.report_runs.push_back({pairs[i].jump + " / " + pairs[i].mode + " (" + r.summary.outcome + ")", pairs[i].log,
+                             primitives, pairs[i].jump});
+    const std::size_t panel = static_cast<std::size_t>(
+        std::find(a.jumps.begin(), a.jumps.end(), pairs[i].jump) - a.jumps.begin());
+    if (!o.series.back().t.empty()) {
+      PitchPanel& pp = o.panels[panel];
+      const double t0 = o.series.back().t.front(), t1 = o.series.back().t.back();
+      pp.t_min = pp.curves.empty() ? t0 : std::min(pp.t_min, t0);
+      pp.t_max = pp.curves.empty() ? t1 : std::max(pp.t_max, t1);
+    }
+    o.panels[panel].curves.push_back({static_cast<int>(o.names.size()) + 1,
+                                      pairs[i].mode + " (" + r.summary.outcome + ")", modeColour(pairs[i].mode)});
+  }
+  if (bad_input) {  // nothing is written: the staging directory goes with its contents
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      if (results[i].status != sim::BatchResult::Status::BadInput) continue;
+      throw InputError(results[i].error + " (in run " + runs[i].label + "; nothing was written)");
+    }
+  }
+  return o;
+}
+
+// compare.md, compare.json and, with any pitch history, compare-pitch.csv/.png and report.html, staged; returns
+// the table.
+std::string writeCompareFiles(const CompareArgs& a, const CompareOutcome& o, const StagedOutputs& staged,
+                              std::vector<std::string>& files) {
+  const std::string md_path = staged.path("compare.md");
+  const std::string json_path = staged.path("compare.json");
+  const std::string csv_path = staged.path("compare-pitch.csv");
+  const std::string png_path = staged.path("compare-pitch.png");
+  const std::string table = sim::compareMarkdown(o.rows);
+  writeTextFileAtomic(md_path, "# centaur compare: jumps x upper-body stabilizers\n\n" + table +
+                                   "\nPeak pitch: pelvis, ground truth. Pitch RMS: IMU pitch (ZYX pitch of "
+                                   "w_R_imu). Max torque ratio: peak |tau| / effort limit. Real-time factor: "
+                                   "simulated time / wall time of the loop.\n"
+                                   "Plot: compare-pitch.png (data: compare-pitch.csv). Logs: <jump>-<mode>.h5.\n");
+  writeTextFileAtomic(json_path, sim::compareJson(o.rows).dump(2, ' ', false,
+                                                               nlohmann::json::error_handler_t::replace) + "\n");
+  files.push_back(md_path);
+  files.push_back(json_path);
+  if (!o.series.empty()) {
+    writeTextFileAtomic(csv_path, sim::pitchCsv(o.names, o.series));
+    files.push_back(csv_path);
+    plotPitchPanels(csv_path, o.panels, png_path);
+    files.push_back(png_path);
+    std::map<std::string, std::string> shown;
+    for (const report::RunSource& r : o.report_runs) {
+      for (const std::string& p : {r.log_path, r.primitive_path}) shown[p] = finalName(staged, p);
+    }
+    if (!a.primitives.empty()) shown.erase(a.primitives);  // the user's file, not staged
+    const std::string report_path = staged.path("report.html");
+    writeCompareReport(report_path, o.report_runs, shown);
+    files.push_back(report_path);
+  }
+  return table;
+}
+
 int runCompare(const CompareArgs& a) {
   const auto t_start = std::chrono::steady_clock::now();
   const std::vector<const sim::Scenario*> scenarios = validate(a);
@@ -224,124 +373,17 @@ int runCompare(const CompareArgs& a) {
     flywheel = staged.path("arm-flywheel.h5");
     plan_json.push_back({{"primitive", "arm-flywheel"}, {"status", planFlywheel(flywheel, files)}});
   }
-  const auto finalPath = [&](const std::string& path) {
-    return path.empty() ? path : staged.finalPath(fs::path(path).filename().string());
-  };
 
-  // 2. the runs
-  struct Pair {
-    std::string jump, mode, log;
-  };
-  std::vector<Pair> pairs;
-  std::vector<sim::BatchRun> runs;
-  for (std::size_t j = 0; j < a.jumps.size(); ++j) {
-    for (const auto& mode : a.modes) {
-      Pair p{a.jumps[j], mode, staged.path(a.jumps[j] + "-" + mode + ".h5")};
-      sim::BatchRun r;
-      r.label = p.jump + "/" + mode;
-      r.scenario = p.jump;
-      r.options = {{"primitive", primitives}, {"stabilizer", mode}};
-      const bool takes_flywheel = findOption(*scenarios[j], "flywheel") != nullptr;
-      if (takes_flywheel && !flywheel.empty()) r.options["flywheel"] = flywheel;
-      r.overrides = a.sets;
-      r.outputs.log_path = p.log;
-      // Without a trajectory file the OCP stabilizer may solve its arm OCP (Ipopt + MUMPS, not thread-safe)
-      // while it is set up: such runs go one at a time.
-      if (mode == "ocp" && !r.options.count("flywheel")) r.exclusive_group = "ipopt";
-      runs.push_back(std::move(r));
-      pairs.push_back(std::move(p));
-    }
-  }
+  // 2. the runs; 3. table, pitch histories, plot, report
+  std::vector<ComparePair> pairs;
+  const std::vector<sim::BatchRun> runs = compareRuns(a, scenarios, primitives, flywheel, staged, pairs);
   const int threads = sim::batchThreads(a.jobs, runs.size());
-  std::fprintf(stderr, "compare: %zu runs on %d thread%s\n", runs.size(), threads, threads == 1 ? "" : "s");
-  sim::BatchCallbacks cb;
-  cb.started = [&](std::size_t i) { std::fprintf(stderr, "compare: started %s\n", runs[i].label.c_str()); };
-  cb.finished = [&](std::size_t i, const sim::BatchResult& r, std::size_t done, std::size_t total) {
-    if (r.status == sim::BatchResult::Status::Completed) {
-      std::fprintf(stderr, "compare: [%zu/%zu] %s: %s, peak pitch %.2f deg, %.1f s simulated in %.1f s (x%.2f)\n",
-                   done, total, runs[i].label.c_str(), r.summary.outcome.c_str(), r.summary.peak_pitch_deg,
-                   r.summary.duration_s, r.elapsed_s, r.summary.real_time_factor);
-    } else {
-      std::fprintf(stderr, "compare: [%zu/%zu] %s FAILED: %s\n", done, total, runs[i].label.c_str(), r.error.c_str());
-    }
-  };
-  const auto t_runs = std::chrono::steady_clock::now();
-  const std::vector<sim::BatchResult> results = sim::runBatch(runs, a.jobs, cb);
-  const double runs_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_runs).count();
-  std::fprintf(stderr, "compare: %zu runs in %.1f s wall time\n", runs.size(), runs_wall);
-
-  // 3. table, pitch histories, plot
-  std::vector<sim::CompareRow> rows;
-  bool bad_input = false, failed = false;
-  std::vector<std::string> names;
-  std::vector<sim::PitchSeries> series;
-  std::vector<report::RunSource> report_runs;
-  std::vector<PitchPanel> panels;
-  for (const auto& jump : a.jumps) panels.push_back({jump, {}});
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const sim::BatchResult& r = results[i];
-    const bool ok = r.status == sim::BatchResult::Status::Completed;
-    bad_input = bad_input || r.status == sim::BatchResult::Status::BadInput;
-    failed = failed || !ok;
-    rows.push_back(sim::makeCompareRow(pairs[i].jump, pairs[i].mode, r, ok ? finalPath(pairs[i].log) : ""));
-    if (!ok) continue;
-    files.insert(files.end(), r.summary.files.begin(), r.summary.files.end());
-    for (const auto& f : r.summary.files) files.push_back(sim::configPathFor(f));
-    try {
-      series.push_back(sim::readLogPitch(pairs[i].log));
-    } catch (const InputError& e) {  // our own log unreadable: a runtime failure, not the user's input
-      throw RuntimeError(e.what());
-    }
-    names.push_back(runs[i].label);
-    report_runs.push_back({pairs[i].jump + " / " + pairs[i].mode + " (" + r.summary.outcome + ")", pairs[i].log,
-                           primitives, pairs[i].jump});
-    const std::size_t panel = static_cast<std::size_t>(
-        std::find(a.jumps.begin(), a.jumps.end(), pairs[i].jump) - a.jumps.begin());
-    if (!series.back().t.empty()) {
-      PitchPanel& pp = panels[panel];
-      const double t0 = series.back().t.front(), t1 = series.back().t.back();
-      pp.t_min = pp.curves.empty() ? t0 : std::min(pp.t_min, t0);
-      pp.t_max = pp.curves.empty() ? t1 : std::max(pp.t_max, t1);
-    }
-    panels[panel].curves.push_back(
-        {static_cast<int>(names.size()) + 1, pairs[i].mode + " (" + r.summary.outcome + ")", modeColour(pairs[i].mode)});
-  }
-  if (bad_input) {  // nothing is written: the staging directory goes with its contents
-    for (std::size_t i = 0; i < runs.size(); ++i) {
-      if (results[i].status != sim::BatchResult::Status::BadInput) continue;
-      throw InputError(results[i].error + " (in run " + runs[i].label + "; nothing was written)");
-    }
-  }
-  const std::string md_path = staged.path("compare.md");
-  const std::string json_path = staged.path("compare.json");
-  const std::string csv_path = staged.path("compare-pitch.csv");
-  const std::string png_path = staged.path("compare-pitch.png");
-  const std::string table = sim::compareMarkdown(rows);
-  const nlohmann::json runs_json = sim::compareJson(rows);
-  writeTextFileAtomic(md_path, "# centaur compare: jumps x upper-body stabilizers\n\n" + table +
-                                   "\nPeak pitch: pelvis, ground truth. Pitch RMS: IMU pitch (ZYX pitch of "
-                                   "w_R_imu). Max torque ratio: peak |tau| / effort limit. Real-time factor: "
-                                   "simulated time / wall time of the loop.\n"
-                                   "Plot: compare-pitch.png (data: compare-pitch.csv). Logs: <jump>-<mode>.h5.\n");
-  writeTextFileAtomic(json_path, runs_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  files.push_back(md_path);
-  files.push_back(json_path);
-  if (!series.empty()) {
-    writeTextFileAtomic(csv_path, sim::pitchCsv(names, series));
-    files.push_back(csv_path);
-    plotPitchPanels(csv_path, panels, png_path);
-    files.push_back(png_path);
-    std::map<std::string, std::string> shown;
-    for (const report::RunSource& r : report_runs) {
-      for (const std::string& p : {r.log_path, r.primitive_path}) shown[p] = finalPath(p);
-    }
-    if (!a.primitives.empty()) shown.erase(a.primitives);  // the user's file, not staged
-    const std::string report_path = staged.path("report.html");
-    writeCompareReport(report_path, report_runs, shown);
-    files.push_back(report_path);
-  }
+  double runs_wall = 0.0;
+  const std::vector<sim::BatchResult> results = runCompareBatch(runs, a.jobs, threads, runs_wall);
+  const CompareOutcome outcome = collectCompare(a, pairs, runs, results, primitives, staged, files);
+  const std::string table = writeCompareFiles(a, outcome, staged, files);
   staged.commit();
-  for (auto& f : files) f = finalPath(f);
+  for (auto& f : files) f = finalName(staged, f);
   const double total_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 
   // 4. report
@@ -351,18 +393,18 @@ int runCompare(const CompareArgs& a) {
   for (const auto& f : files) std::cout << "wrote " << f << "\n";
   if (a.json) {
     nlohmann::json j;
-    j["runs"] = runs_json;
+    j["runs"] = sim::compareJson(outcome.rows);
     j["files"] = files;
     j["wall_time_s"] = total_wall;
     j["runs_wall_time_s"] = runs_wall;
     j["threads"] = threads;
-    j["primitives"] = a.primitives.empty() ? finalPath(primitives) : primitives;
+    j["primitives"] = a.primitives.empty() ? finalName(staged, primitives) : primitives;
     j["flywheel"] = flywheel.empty() ? nlohmann::json(nullptr)
-                                     : nlohmann::json(a.flywheel.empty() ? finalPath(flywheel) : flywheel);
+                                     : nlohmann::json(a.flywheel.empty() ? finalName(staged, flywheel) : flywheel);
     j["planned"] = plan_json;
     printJsonLine(j);
   }
-  return failed ? kExitRuntime : kExitOk;
+  return outcome.failed ? kExitRuntime : kExitOk;
 }
 
 const Registrar kCompare{Command{
