@@ -74,9 +74,8 @@ void writeVector(const Writer& w, hid_t loc, const Primitive& p, const std::stri
   w.dataset(loc, name, {static_cast<hsize_t>(rows)}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v.data(), meta);
 }
 
-void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
-  Id g = w.createGroup(file, p.name);
-  const hid_t gid = g.get();
+// The 1 kHz samples: one dataset per quantity, with its units, frame and meaning.
+void writeSamples(const Writer& w, hid_t gid, const Primitive& p) {
   const Eigen::Index n = p.t.size();
   const std::vector<hsize_t> foot3{kFeet, 3};
 
@@ -122,23 +121,26 @@ void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
     Id ds(w.check(H5Dopen2(gid, "base_quat", H5P_DEFAULT), "dataset 'base_quat'"), H5Dclose);
     w.stringAttribute(ds.get(), "order", "w,x,y,z");
   }
+}
 
-  // knots
-  {
-    Id k(w.check(H5Gcreate2(gid, "knots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "group 'knots'"), H5Gclose);
-    const Eigen::Index nk = p.knot_t.size();
-    const Eigen::Index ns = nk > 0 ? nk - 1 : 0;
-    writeVector(w, k.get(), p, "t", p.knot_t, nk, {"s", nullptr, "node times t_k (N_s + 1)"});
-    writeMatrix(w, k.get(), p, "x", p.knot_x, nk, {static_cast<hsize_t>(p.knot_x.cols())},
-                {"SI", "see q, nu", "OCP states x_k = [q_k, nu_k] at the nodes"});
-    writeMatrix(w, k.get(), p, "u", p.knot_u, ns, {static_cast<hsize_t>(p.knot_u.cols())},
-                {"SI", "W (nu_dot base, forces), B (qddot_C)",
-                 "OCP controls u_k, piecewise constant over each interval"});
-    writeVector(w, k.get(), p, "dt", p.knot_dt, ns, {"s", nullptr, "interval durations dt_k (N_s)"});
-    writeSolverMultipliers(w, k.get(), p);
-  }
+// The OCP's knots (group `knots`): node times, states, controls, interval durations, the solver's multipliers.
+void writeKnots(const Writer& w, hid_t gid, const Primitive& p) {
+  Id k(w.check(H5Gcreate2(gid, "knots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "group 'knots'"), H5Gclose);
+  const Eigen::Index nk = p.knot_t.size();
+  const Eigen::Index ns = nk > 0 ? nk - 1 : 0;
+  writeVector(w, k.get(), p, "t", p.knot_t, nk, {"s", nullptr, "node times t_k (N_s + 1)"});
+  writeMatrix(w, k.get(), p, "x", p.knot_x, nk, {static_cast<hsize_t>(p.knot_x.cols())},
+              {"SI", "see q, nu", "OCP states x_k = [q_k, nu_k] at the nodes"});
+  writeMatrix(w, k.get(), p, "u", p.knot_u, ns, {static_cast<hsize_t>(p.knot_u.cols())},
+              {"SI", "W (nu_dot base, forces), B (qddot_C)",
+               "OCP controls u_k, piecewise constant over each interval"});
+  writeVector(w, k.get(), p, "dt", p.knot_dt, ns, {"s", nullptr, "interval durations dt_k (N_s)"});
+  writeSolverMultipliers(w, k.get(), p);
+}
 
-  // metadata
+// The metadata attributes: the caller's scalars, vectors and strings (one namespace), the solve's figures and the
+// conventions.
+void writeMetadata(const Writer& w, hid_t gid, const Primitive& p) {
   std::set<std::string> keys;
   auto claim = [&](const std::string& key) {
     if (key.empty() || reservedAttributes().count(key) > 0 || !keys.insert(key).second) {
@@ -173,6 +175,13 @@ void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
   w.stringAttribute(gid, "frames",
                     "W = world (z up, gravity -z); B = waist (base) frame; feet = wheel centres FL,FR,RL,RR "
                     "= wheel_1..wheel_4");
+}
+
+void writeGroup(const Writer& w, hid_t file, const Primitive& p) {
+  Id g = w.createGroup(file, p.name);
+  writeSamples(w, g.get(), p);
+  writeKnots(w, g.get(), p);
+  writeMetadata(w, g.get(), p);
 }
 
 void checkName(const std::string& target, const std::string& name) {
