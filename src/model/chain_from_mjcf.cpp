@@ -54,7 +54,9 @@ ChainLink jointLink(const mjModel* m, const mjData* d, const std::string& path, 
   if (m->jnt_type[j] != mjJNT_HINGE) chainFail(path, jn, "not a hinge (revolute) joint");
   const int b = m->jnt_bodyid[j];
   if (m->body_jntnum[b] != 1) chainFail(path, jn, "its body carries more than one joint");
-  if (m->body_parentid[b] != parent) chainFail(path, jn, "its body is not a child of the previous link (or of the base)");
+  if (m->body_parentid[b] != parent) {
+    chainFail(path, jn, "its body is not a child of the previous link (or of the base)");
+  }
   if (Vec3C(m->jnt_pos + 3 * j).norm() > 1e-12) chainFail(path, jn, "the joint anchor is not at the body origin");
   ChainLink L;
   L.joint = jn;

@@ -77,6 +77,80 @@ void checkRegularisation(const YamlReader& root, const LoadedStack& out) {
       << "(docs/qp.md). Raise regularisation or lower the weights";
   root.fail("regularisation", msg.str());
 }
+// The task `name` of the stack (its definition under the key `name`) as a term: type, lambda, weight, the rows
+// selected by `indices` and the scale. The task goes into out.tasks.
+Term readTerm(YamlReader& root, const std::string& name, const TaskRegistry& registry, LoadedStack& out) {
+  if (name == "stack" || name == "constraints" || name == "regularisation")
+    root.fail("stack", "'" + name + "' is a reserved key, not a task name");
+  if (!root.has(name)) root.fail(name, "task named in 'stack' has no definition");
+  YamlReader r = root.child(name);
+  std::string type;
+  r.get("type", type);
+  if (type.empty()) r.fail("type", "required; registered task types: " + joinTypes(registry.taskTypes()));
+  if (!registry.hasTask(type))
+    r.fail("type", "unknown task type '" + type + "'; registered: " + joinTypes(registry.taskTypes()));
+  TaskPtr task;
+  try {
+    task = registry.task(type)(name, r);
+  } catch (const std::invalid_argument& e) {
+    r.fail("type", e.what());
+  }
+  if (!task) r.fail("type", "the maker of type '" + type + "' returned no task");
+  double lambda = task->lambda();
+  r.get("lambda", lambda, 0.0, 1e6);
+  task->setLambda(lambda);
+  readWeight(r, *task);
+  Term t(task);
+  if (r.has("indices")) {
+    const YAML::Node idx = r.raw("indices");
+    Rows rows;
+    try {
+      if (!idx.IsSequence() || idx.size() == 0) throw YAML::Exception(YAML::Mark(), "");
+      for (const auto& i : idx) rows.push_back(i.as<int>());
+    } catch (const YAML::Exception&) {
+      r.fail("indices", "expected a non-empty list of row indices");
+    }
+    try {
+      t = t % rows;
+    } catch (const std::out_of_range&) {
+      r.fail("indices", "row indices must be in [0, " + std::to_string(task->rows() - 1) + "]");
+    }
+  }
+  double scale = 1.0;
+  r.get("scale", scale, 0.0, 1e12);
+  t.scale = scale;
+  r.finish();
+  out.tasks[name] = task;
+  return t;
+}
+
+// The constraints named in `constraints` (each once), from their definitions.
+void readConstraints(YamlReader& root, const TaskRegistry& registry, LoadedStack& out) {
+  if (!root.has("constraints")) return;
+  const YAML::Node list = root.raw("constraints");
+  if (list.IsSequence() && list.size() == 0) return;
+  for (const std::string& name : namesOf(list, root, "constraints")) {
+    if (out.constraints.count(name)) continue;
+    if (!root.has(name)) root.fail(name, "constraint named in 'constraints' has no definition");
+    YamlReader r = root.child(name);
+    std::string type;
+    r.get("type", type);
+    if (type.empty()) r.fail("type", "required; registered constraint types: " + joinTypes(registry.constraintTypes()));
+    if (!registry.hasConstraint(type))
+      r.fail("type", "unknown constraint type '" + type + "'; registered: " + joinTypes(registry.constraintTypes()));
+    ConstraintPtr c;
+    try {
+      c = registry.constraint(type)(name, r);
+    } catch (const std::invalid_argument& e) {
+      r.fail("type", e.what());
+    }
+    if (!c) r.fail("type", "the maker of type '" + type + "' returned no constraint");
+    r.finish();
+    out.constraints[name] = c;
+    out.stack.constraints.push_back(c);
+  }
+}
+
 }  // namespace
 
 void TaskRegistry::addTask(const std::string& type, TaskMaker maker) {
@@ -109,89 +183,18 @@ LoadedStack loadStack(const YAML::Node& node, const std::string& file, const Tas
   if (!levels.IsSequence() || levels.size() == 0) root.fail("stack", "expected a non-empty list of levels");
   root.get("regularisation", out.stack.regularisation, 1e-12, 1.0);
 
-  std::map<std::string, Term> terms;
-  auto term = [&](const std::string& name) -> Term {
-    auto it = terms.find(name);
-    if (it != terms.end()) return it->second;
-    if (name == "stack" || name == "constraints" || name == "regularisation")
-      root.fail("stack", "'" + name + "' is a reserved key, not a task name");
-    if (!root.has(name)) root.fail(name, "task named in 'stack' has no definition");
-    YamlReader r = root.child(name);
-    std::string type;
-    r.get("type", type);
-    if (type.empty()) r.fail("type", "required; registered task types: " + joinTypes(registry.taskTypes()));
-    if (!registry.hasTask(type))
-      r.fail("type", "unknown task type '" + type + "'; registered: " + joinTypes(registry.taskTypes()));
-    TaskPtr task;
-    try {
-      task = registry.task(type)(name, r);
-    } catch (const std::invalid_argument& e) {
-      r.fail("type", e.what());
-    }
-    if (!task) r.fail("type", "the maker of type '" + type + "' returned no task");
-    double lambda = task->lambda();
-    r.get("lambda", lambda, 0.0, 1e6);
-    task->setLambda(lambda);
-    readWeight(r, *task);
-    Term t(task);
-    if (r.has("indices")) {
-      const YAML::Node idx = r.raw("indices");
-      Rows rows;
-      try {
-        if (!idx.IsSequence() || idx.size() == 0) throw YAML::Exception(YAML::Mark(), "");
-        for (const auto& i : idx) rows.push_back(i.as<int>());
-      } catch (const YAML::Exception&) {
-        r.fail("indices", "expected a non-empty list of row indices");
-      }
-      try {
-        t = t % rows;
-      } catch (const std::out_of_range&) {
-        r.fail("indices", "row indices must be in [0, " + std::to_string(task->rows() - 1) + "]");
-      }
-    }
-    double scale = 1.0;
-    r.get("scale", scale, 0.0, 1e12);
-    t.scale = scale;
-    r.finish();
-    out.tasks[name] = task;
-    terms[name] = t;
-    return t;
-  };
-
+  std::map<std::string, Term> terms;  // a task named in several levels is read once
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const std::string key = "stack[" + std::to_string(k) + "]";
     Level level;
-    for (const std::string& name : namesOf(levels[k], root, key)) level.terms.push_back(term(name));
+    for (const std::string& name : namesOf(levels[k], root, key)) {
+      auto it = terms.find(name);
+      if (it == terms.end()) it = terms.emplace(name, readTerm(root, name, registry, out)).first;
+      level.terms.push_back(it->second);
+    }
     out.stack.levels.push_back(std::move(level));
   }
-
-  if (root.has("constraints")) {
-    const YAML::Node list = root.raw("constraints");
-    if (!(list.IsSequence() && list.size() == 0)) {
-      for (const std::string& name : namesOf(list, root, "constraints")) {
-        if (out.constraints.count(name)) continue;
-        if (!root.has(name)) root.fail(name, "constraint named in 'constraints' has no definition");
-        YamlReader r = root.child(name);
-        std::string type;
-        r.get("type", type);
-        if (type.empty())
-          r.fail("type", "required; registered constraint types: " + joinTypes(registry.constraintTypes()));
-        if (!registry.hasConstraint(type))
-          r.fail("type",
-                 "unknown constraint type '" + type + "'; registered: " + joinTypes(registry.constraintTypes()));
-        ConstraintPtr c;
-        try {
-          c = registry.constraint(type)(name, r);
-        } catch (const std::invalid_argument& e) {
-          r.fail("type", e.what());
-        }
-        if (!c) r.fail("type", "the maker of type '" + type + "' returned no constraint");
-        r.finish();
-        out.constraints[name] = c;
-        out.stack.constraints.push_back(c);
-      }
-    }
-  }
+  readConstraints(root, registry, out);
   checkRegularisation(root, out);
   root.finish();
   return out;
