@@ -15,8 +15,26 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 }
 
 MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng_(settings.seed) {
+  m_ = loadMjcf(settings_.model_path, !settings_.visual_geoms);
+  configureModel();
+  d_ = mj_makeData(m_);
+  readActuators();
+  findBaseAndSensors();
+  setContactsAndWall();
+  checkPush();
+  if (settings_.mass_scale != 1.0 || !settings_.com_offset.isZero(0.0)) applyModelError();
+
+  command_.resize(n_);
+  tau_applied_.setZero(n_);
+  tau_cmd_.setZero(n_);
+  delay_.resize(static_cast<std::size_t>(settings_.latency_periods) + 1);
+  for (auto& s : delay_) s.resize(n_);
+  reset();
+}
+
+// The integrator, the time step and the contact solver of the settings (the model is deleted on bad input).
+void MujocoRobot::configureModel() {
   const std::string& path = settings_.model_path;
-  m_ = loadMjcf(path, !settings_.visual_geoms);
   if (m_->opt.integrator == mjINT_RK4) {
     mj_deleteModel(m_);
     throw InputError(path + ": the RK4 integrator is not supported (the impedance law needs mj_step1/mj_step2)");
@@ -36,9 +54,12 @@ MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng
     mj_deleteModel(m_);
     throw InputError(path + ": unknown contact solver '" + settings_.solver + "' (newton, cg, pgs or model)");
   }
-  d_ = mj_makeData(m_);
+}
 
-  // Actuated joints, in actuator order.
+// The actuated joints, in actuator order: torque motors on hinge or slide joints, their gears, effort and position
+// limits (model and data are deleted on bad input).
+void MujocoRobot::readActuators() {
+  const std::string& path = settings_.model_path;
   n_ = m_->nu;
   gear_.resize(n_);
   tau_max_.resize(n_);
@@ -68,6 +89,10 @@ MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng
     q_lo_[i] = m_->jnt_limited[j] ? m_->jnt_range[2 * j] : -kInf;
     q_hi_[i] = m_->jnt_limited[j] ? m_->jnt_range[2 * j + 1] : kInf;
   }
+}
+
+// The floating base's coordinates, the IMU's sensors and the keyframe.
+void MujocoRobot::findBaseAndSensors() {
   for (int j = 0; j < m_->njnt; ++j) {
     if (m_->jnt_type[j] == mjJNT_FREE) {
       base_qpos_ = m_->jnt_qposadr[j];
@@ -79,8 +104,12 @@ MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng
   sensor_gyro_ = mj_name2id(m_, mjOBJ_SENSOR, "imu_gyro");
   sensor_acc_ = mj_name2id(m_, mjOBJ_SENSOR, "imu_acc");
   key_ = settings_.keyframe.empty() ? -1 : mj_name2id(m_, mjOBJ_KEY, settings_.keyframe.c_str());
+}
 
-  // Contact bodies (ground truth forces) and their friction.
+// The contact bodies (ground-truth forces), the friction of their geoms and the ground's, and the wall's position
+// (model and data are deleted on bad input).
+void MujocoRobot::setContactsAndWall() {
+  const std::string& path = settings_.model_path;
   for (const auto& b : settings_.contact_bodies) {
     const int id = mj_name2id(m_, mjOBJ_BODY, b.c_str());
     if (id < 0) {
@@ -107,7 +136,11 @@ MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng
   } else if (wall_geom >= 0 && m_->geom_bodyid[wall_geom] == 0) {
     m_->geom_pos[3 * wall_geom] = settings_.wall_x - m_->geom_size[3 * wall_geom];
   }
+}
 
+// The push's body, duration and direction (model and data are deleted on bad input).
+void MujocoRobot::checkPush() {
+  const std::string& path = settings_.model_path;
   if (settings_.push.impulse > 0.0) {
     push_body_ = mj_name2id(m_, mjOBJ_BODY, settings_.push.body.c_str());
     if (push_body_ <= 0 || !(settings_.push.duration > 0.0) || !(settings_.push.direction.norm() > 0.0)) {
@@ -118,14 +151,6 @@ MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng
     }
     settings_.push.direction.normalize();
   }
-  if (settings_.mass_scale != 1.0 || !settings_.com_offset.isZero(0.0)) applyModelError();
-
-  command_.resize(n_);
-  tau_applied_.setZero(n_);
-  tau_cmd_.setZero(n_);
-  delay_.resize(static_cast<std::size_t>(settings_.latency_periods) + 1);
-  for (auto& s : delay_) s.resize(n_);
-  reset();
 }
 
 void MujocoRobot::applyModelError() {

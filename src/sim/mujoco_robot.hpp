@@ -141,6 +141,12 @@ class MujocoRobot final : public RobotInterface {
  private:
   void sampleMeasurement();
   void applyImpedance();
+  // The constructor's steps (each deletes the model and data it was given before it throws on bad input).
+  void configureModel();
+  void readActuators();
+  void findBaseAndSensors();
+  void setContactsAndWall();
+  void checkPush();
   /// Scales the robot's masses and shifts its CoM (SimSettings::mass_scale, com_offset), then mj_setConst.
   void applyModelError();
   /// The push force of the coming physics step (xfrc_applied of the pushed body), from the robot time.
