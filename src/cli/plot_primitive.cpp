@@ -88,33 +88,24 @@ std::string fmtApex(double z) {
   return buf;
 }
 
-std::string buildScript(const data::Primitive& p, const PlotOptions& o) {
-  const data::PrimitiveSummary s = data::summarize(p);
+// "name: planned primitive (status, iterations) - flight, apex" of a primitive without a title of its own.
+std::string defaultTitle(const data::Primitive& p, const data::PrimitiveSummary& s) {
+  std::ostringstream t;
+  t << excerpt(p.name, 60) << ": planned primitive (" << excerpt(p.solve.status, 40) << ", " << p.solve.iterations
+    << " iterations)";
+  if (!s.flight.empty()) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, " - flight %.3f s, apex +%.3f m at %.3f s", s.flight_time, s.apex_gain,
+                  s.apex_time);
+    t << buf;
+  }
+  return t.str();
+}
+
+// The terminal, axes and key settings, and the shaded flight and partial-support intervals behind every panel.
+void writeSetupAndShades(std::ostringstream& g, const data::Primitive& p, const PlotOptions& o,
+                         const data::PrimitiveSummary& s, const std::vector<data::TimeInterval>& partial_iv) {
   const Eigen::Index n = p.t.size();
-
-  // Phases: flight = all feet off; partial support = some feet off, some on.
-  std::vector<bool> partial(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double on = p.contact.row(i).sum();
-    partial[static_cast<std::size_t>(i)] = on > 0.5 && on < 3.5;
-  }
-  const auto partial_iv = data::intervalsWhere(p.t, partial, true);
-
-  std::string title = o.title;
-  if (title.empty()) {
-    std::ostringstream t;
-    t << excerpt(p.name, 60) << ": planned primitive (" << excerpt(p.solve.status, 40) << ", " << p.solve.iterations
-      << " iterations)";
-    if (!s.flight.empty()) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, " - flight %.3f s, apex +%.3f m at %.3f s", s.flight_time, s.apex_gain,
-                    s.apex_time);
-      t << buf;
-    }
-    title = t.str();
-  }
-
-  std::ostringstream g;
   g << "set terminal pngcairo size " << o.width_px << "," << o.height_px << " enhanced font 'Sans,11'\n"
     << "set output " << gnuplotQuote(kGnuplotPng) << "\n"
     << "set datafile commentschars '#'\n"
@@ -133,6 +124,24 @@ std::string buildScript(const data::Primitive& p, const PlotOptions& o) {
     g << "set object " << obj++ << " rect from first " << num(iv.start) << ", graph 0 to first " << num(iv.end)
       << ", graph 1 behind fc rgb '" << kPartialShade << "' fs solid 1.0 noborder\n";
   }
+}
+
+std::string buildScript(const data::Primitive& p, const PlotOptions& o) {
+  const data::PrimitiveSummary s = data::summarize(p);
+  const Eigen::Index n = p.t.size();
+
+  // Phases: flight = all feet off; partial support = some feet off, some on.
+  std::vector<bool> partial(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double on = p.contact.row(i).sum();
+    partial[static_cast<std::size_t>(i)] = on > 0.5 && on < 3.5;
+  }
+  const auto partial_iv = data::intervalsWhere(p.t, partial, true);
+
+  const std::string title = o.title.empty() ? defaultTitle(p, s) : o.title;
+
+  std::ostringstream g;
+  writeSetupAndShades(g, p, o, s, partial_iv);
   auto shadeKeys = [&]() {
     std::string k;
     if (!s.flight.empty()) {
