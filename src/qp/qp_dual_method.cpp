@@ -285,37 +285,43 @@ QpStatus QpSolver::solveDual(bool warm) {
   }
 }
 
-QpStatus QpSolver::dualLoop() {
+// The most violated inactive inequality side at x (distance to its hyperplane, relative for large bounds), -1 if
+// none is violated beyond the feasibility tolerance.
+int QpSolver::mostViolated() {
   const int n = n_, m_eq = m_eq_, m_in = m_in_;
   const int n_box = has_box_ ? n : 0;
-  const auto& C = *C_;
+  int p = -1;
+  double worst = 0.0;
+  const double ftol = settings_.feasibility_tol;
+  auto consider = [&](int id, double b, double value, double norm, double sign) {
+    if (!(std::abs(b) < kInf)) return;
+    const double v = sign * (b - value) / norm;
+    if (v > worst && v > ftol * std::max(1.0, std::abs(b) / norm)) {
+      worst = v;
+      p = id;
+    }
+  };
+  if (m_in > 0) cx_.head(m_in).noalias() = *C_ * x_.head(n);
+  for (int i = 0; i < m_in; ++i) {
+    const int id = m_eq + 2 * i;
+    if (in_active_[id] || in_active_[id + 1]) continue;  // a side is active (or the row is settled)
+    consider(id, (*c_lo_)[i], cx_[i], row_norm_[i], 1.0);
+    consider(id + 1, (*c_up_)[i], cx_[i], row_norm_[i], -1.0);
+  }
+  for (int j = 0; j < n_box; ++j) {
+    const int id = m_eq + 2 * m_in + 2 * j;
+    if (in_active_[id] || in_active_[id + 1]) continue;
+    consider(id, (*x_lo_)[j], x_[j], 1.0, 1.0);
+    consider(id + 1, (*x_up_)[j], x_[j], 1.0, -1.0);
+  }
+  return p;
+}
+
+QpStatus QpSolver::dualLoop() {
+  const int n = n_;
   bool refined = false;
   for (;;) {
-    // Most violated constraint (distance to its hyperplane, relative for large bounds).
-    int p = -1;
-    double worst = 0.0;
-    const double ftol = settings_.feasibility_tol;
-    auto consider = [&](int id, double b, double value, double norm, double sign) {
-      if (!(std::abs(b) < kInf)) return;
-      const double v = sign * (b - value) / norm;
-      if (v > worst && v > ftol * std::max(1.0, std::abs(b) / norm)) {
-        worst = v;
-        p = id;
-      }
-    };
-    if (m_in > 0) cx_.head(m_in).noalias() = C * x_.head(n);
-    for (int i = 0; i < m_in; ++i) {
-      const int id = m_eq + 2 * i;
-      if (in_active_[id] || in_active_[id + 1]) continue;  // a side is active (or the row is settled)
-      consider(id, (*c_lo_)[i], cx_[i], row_norm_[i], 1.0);
-      consider(id + 1, (*c_up_)[i], cx_[i], row_norm_[i], -1.0);
-    }
-    for (int j = 0; j < n_box; ++j) {
-      const int id = m_eq + 2 * m_in + 2 * j;
-      if (in_active_[id] || in_active_[id + 1]) continue;
-      consider(id, (*x_lo_)[j], x_[j], 1.0, 1.0);
-      consider(id + 1, (*x_up_)[j], x_[j], 1.0, -1.0);
-    }
+    const int p = mostViolated();
     if (p < 0) return QpStatus::kOptimal;  // (subject to the KKT check)
 
     double u_plus = 0.0;

@@ -149,6 +149,7 @@ class QpSolver {
   // The dual method on the factor in L_ for H + shift_ I and *g_: equalities, warm start, main loop, KKT check.
   QpStatus solveDual(bool warm);
   QpStatus dualLoop();               // adds the most violated constraint until none is (main loop)
+  int mostViolated();                // that constraint side (id), -1 if none is violated; sets cx_ = C x
   bool kktHolds();                   // KKT check of x_, u_ for H + shift_ I and *g_ (sets hx_); needs cx_ = C x
   void refine();                     // x, u recomputed on the active set + one refinement step, dual feasible
   void rememberActiveSet();          // prev_active_ <- the inequalities of the active set (warm start)
