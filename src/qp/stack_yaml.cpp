@@ -77,6 +77,25 @@ void checkRegularisation(const YamlReader& root, const LoadedStack& out) {
       << "(docs/qp.md). Raise regularisation or lower the weights";
   root.fail("regularisation", msg.str());
 }
+// The task or constraint (kind) that the maker registered for the definition's `type` builds from the definition.
+template <class Made, class MakerOf>
+Made makeFromType(YamlReader& r, const std::string& name, const std::string& kind,
+                  const std::vector<std::string>& types, const MakerOf& makerOf) {
+  std::string type;
+  r.get("type", type);
+  if (type.empty()) r.fail("type", "required; registered " + kind + " types: " + joinTypes(types));
+  if (std::find(types.begin(), types.end(), type) == types.end())
+    r.fail("type", "unknown " + kind + " type '" + type + "'; registered: " + joinTypes(types));
+  Made made;
+  try {
+    made = makerOf(type)(name, r);
+  } catch (const std::invalid_argument& e) {
+    r.fail("type", e.what());
+  }
+  if (!made) r.fail("type", "the maker of type '" + type + "' returned no " + kind);
+  return made;
+}
+
 // The task `name` of the stack (its definition under the key `name`) as a term: type, lambda, weight, the rows
 // selected by `indices` and the scale. The task goes into out.tasks.
 Term readTerm(YamlReader& root, const std::string& name, const TaskRegistry& registry, LoadedStack& out) {
@@ -84,18 +103,8 @@ Term readTerm(YamlReader& root, const std::string& name, const TaskRegistry& reg
     root.fail("stack", "'" + name + "' is a reserved key, not a task name");
   if (!root.has(name)) root.fail(name, "task named in 'stack' has no definition");
   YamlReader r = root.child(name);
-  std::string type;
-  r.get("type", type);
-  if (type.empty()) r.fail("type", "required; registered task types: " + joinTypes(registry.taskTypes()));
-  if (!registry.hasTask(type))
-    r.fail("type", "unknown task type '" + type + "'; registered: " + joinTypes(registry.taskTypes()));
-  TaskPtr task;
-  try {
-    task = registry.task(type)(name, r);
-  } catch (const std::invalid_argument& e) {
-    r.fail("type", e.what());
-  }
-  if (!task) r.fail("type", "the maker of type '" + type + "' returned no task");
+  const TaskPtr task = makeFromType<TaskPtr>(r, name, "task", registry.taskTypes(),
+                                             [&](const std::string& type) { return registry.task(type); });
   double lambda = task->lambda();
   r.get("lambda", lambda, 0.0, 1e6);
   task->setLambda(lambda);
@@ -133,18 +142,8 @@ void readConstraints(YamlReader& root, const TaskRegistry& registry, LoadedStack
     if (out.constraints.count(name)) continue;
     if (!root.has(name)) root.fail(name, "constraint named in 'constraints' has no definition");
     YamlReader r = root.child(name);
-    std::string type;
-    r.get("type", type);
-    if (type.empty()) r.fail("type", "required; registered constraint types: " + joinTypes(registry.constraintTypes()));
-    if (!registry.hasConstraint(type))
-      r.fail("type", "unknown constraint type '" + type + "'; registered: " + joinTypes(registry.constraintTypes()));
-    ConstraintPtr c;
-    try {
-      c = registry.constraint(type)(name, r);
-    } catch (const std::invalid_argument& e) {
-      r.fail("type", e.what());
-    }
-    if (!c) r.fail("type", "the maker of type '" + type + "' returned no constraint");
+    const ConstraintPtr c = makeFromType<ConstraintPtr>(r, name, "constraint", registry.constraintTypes(),
+                                                        [&](const std::string& t) { return registry.constraint(t); });
     r.finish();
     out.constraints[name] = c;
     out.stack.constraints.push_back(c);
