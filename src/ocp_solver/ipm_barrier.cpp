@@ -5,9 +5,9 @@
 //     solved with the same factorization, and sigma = mu / average complementarity minimizes a quality function
 //     (the linearized KKT error after the step, fraction to the boundary included) by golden-section search
 //     in sigma (not log sigma: Ipopt's search is linear too); the step for that mu is their combination (the
-//     right-hand side is affine in mu). Free-mode
-//     iterates must make progress in a filter of (constraint violation, objective); otherwise the method falls
-//     back to the monotone mode, from 0.8 x the average complementarity, until an iterate is acceptable again.
+//     right-hand side is affine in mu). Free-mode iterates must make progress in a filter of (constraint
+//     violation, objective); otherwise the method falls back to the monotone mode, from 0.8 x the average
+//     complementarity, until an iterate is acceptable again.
 #include <algorithm>
 #include <cmath>
 #include <limits>
