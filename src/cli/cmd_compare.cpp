@@ -316,8 +316,8 @@ CompareOutcome collectCompare(const CompareArgs& a, const std::vector<ComparePai
 
 // compare.md, compare.json and, with any pitch history, compare-pitch.csv/.png and report.html, staged; returns
 // the table.
-std::string writeCompareFiles(const CompareArgs& a, const CompareOutcome& o, const StagedOutputs& staged,
-                              std::vector<std::string>& files) {
+std::string writeCompareFiles(const CompareArgs& a, const CompareOutcome& o, const nlohmann::json& runs_json,
+                              const StagedOutputs& staged, std::vector<std::string>& files) {
   const std::string md_path = staged.path("compare.md");
   const std::string json_path = staged.path("compare.json");
   const std::string csv_path = staged.path("compare-pitch.csv");
@@ -328,8 +328,7 @@ std::string writeCompareFiles(const CompareArgs& a, const CompareOutcome& o, con
                                    "w_R_imu). Max torque ratio: peak |tau| / effort limit. Real-time factor: "
                                    "simulated time / wall time of the loop.\n"
                                    "Plot: compare-pitch.png (data: compare-pitch.csv). Logs: <jump>-<mode>.h5.\n");
-  writeTextFileAtomic(json_path, sim::compareJson(o.rows).dump(2, ' ', false,
-                                                               nlohmann::json::error_handler_t::replace) + "\n");
+  writeTextFileAtomic(json_path, runs_json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   files.push_back(md_path);
   files.push_back(json_path);
   if (!o.series.empty()) {
@@ -381,7 +380,8 @@ int runCompare(const CompareArgs& a) {
   double runs_wall = 0.0;
   const std::vector<sim::BatchResult> results = runCompareBatch(runs, a.jobs, threads, runs_wall);
   const CompareOutcome outcome = collectCompare(a, pairs, runs, results, primitives, staged, files);
-  const std::string table = writeCompareFiles(a, outcome, staged, files);
+  const nlohmann::json runs_json = sim::compareJson(outcome.rows);
+  const std::string table = writeCompareFiles(a, outcome, runs_json, staged, files);
   staged.commit();
   for (auto& f : files) f = finalName(staged, f);
   const double total_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
@@ -393,7 +393,7 @@ int runCompare(const CompareArgs& a) {
   for (const auto& f : files) std::cout << "wrote " << f << "\n";
   if (a.json) {
     nlohmann::json j;
-    j["runs"] = sim::compareJson(outcome.rows);
+    j["runs"] = runs_json;
     j["files"] = files;
     j["wall_time_s"] = total_wall;
     j["runs_wall_time_s"] = runs_wall;
