@@ -199,6 +199,43 @@ void WholeBodyController::enterSafe(WholeBodyStatus why, JointCommand& command) 
   writeSafe(command);
 }
 
+// 2-3. The estimate, the measured model at it and contact detection; false when the estimate is not finite.
+bool WholeBodyController::estimate(const RobotState& state) noexcept {
+  bool stance[4];
+  for (int k = 0; k < 4; ++k) stance[k] = contacts_.stance[k];
+  // the estimate, and the measured model at it: M, bias forces, Jacobians
+  estimator_.update(state, stance, *model_meas_, RobotModel::Detail::kDynamics);
+  if (!estimator_.q().allFinite() || !estimator_.v().allFinite()) return false;
+  if (params_.use_contact_detector && detector_.update(*model_meas_, state.tau, params_.dt)) {
+    contacts_.stance = detector_.inContact();
+  } else if (!params_.use_contact_detector) {
+    contacts_.stance = {true, true, true, true};
+  }
+  for (int k = 0; k < 4; ++k) contacts_.stance[k] = contacts_.stance[k] && stance_mask_[k];
+  return true;
+}
+
+// 7. Force distribution on the measured state. A failed distribution keeps the last good feed-forward.
+void WholeBodyController::distributeForces() noexcept {
+  if (default_forces_) {
+    int ns = 0;
+    for (bool s : contacts_.stance) ns += s ? 1 : 0;
+    F_d_.setZero();
+    if (ns > 0) {
+      const double fz = -model_meas_->totalMass() * model_meas_->gravity().z() / ns;
+      for (int k = 0; k < 4; ++k) F_d_(2, k) = contacts_.stance[k] ? fz : 0.0;
+    }
+  }
+  const ForceDistributionStatus fs = force_.compute(*model_meas_, vdot_d_, F_d_, contacts_);
+  if (fs == ForceDistributionStatus::kFailed || !force_.tauFeedforward().allFinite()) {
+    ++counters_.force_failures;
+  } else {
+    if (fs == ForceDistributionStatus::kRelaxed) ++counters_.force_relaxed;
+    // never command a feed-forward beyond the effort limits (the drive would saturate it anyway)
+    good_tau_ff_ = force_.tauFeedforward().cwiseMax(-tau_max_).cwiseMin(tau_max_);
+  }
+}
+
 void WholeBodyController::tick(const RobotState& state, JointCommand& command) noexcept {
   ++counters_.ticks;
   if (status_ == WholeBodyStatus::kNotStarted) return;
@@ -216,21 +253,11 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
     return;
   }
   // 2-3. estimate, measured model, contact detection
-  bool stance[4];
-  for (int k = 0; k < 4; ++k) stance[k] = contacts_.stance[k];
-  // the estimate, and the measured model at it: M, bias forces, Jacobians
-  estimator_.update(state, stance, *model_meas_, RobotModel::Detail::kDynamics);
-  if (!estimator_.q().allFinite() || !estimator_.v().allFinite()) {
+  if (!estimate(state)) {
     ++counters_.invalid_inputs;
     enterSafe(WholeBodyStatus::kSafeInvalidInput, command);
     return;
   }
-  if (params_.use_contact_detector && detector_.update(*model_meas_, state.tau, params_.dt)) {
-    contacts_.stance = detector_.inContact();
-  } else if (!params_.use_contact_detector) {
-    contacts_.stance = {true, true, true, true};
-  }
-  for (int k = 0; k < 4; ++k) contacts_.stance[k] = contacts_.stance[k] && stance_mask_[k];
   if (resume_pending_) {  // leave safe mode: restart the IK from the measured posture
     q_ref_ = state.q;
     qd_ref_.setZero();
@@ -259,24 +286,8 @@ void WholeBodyController::tick(const RobotState& state, JointCommand& command) n
   // 6. integrate
   qd_ref_ = x_.tail(n_);
   q_ref_ += params_.dt * qd_ref_;
-  // 7. force distribution on the measured state
-  if (default_forces_) {
-    int ns = 0;
-    for (bool s : contacts_.stance) ns += s ? 1 : 0;
-    F_d_.setZero();
-    if (ns > 0) {
-      const double fz = -model_meas_->totalMass() * model_meas_->gravity().z() / ns;
-      for (int k = 0; k < 4; ++k) F_d_(2, k) = contacts_.stance[k] ? fz : 0.0;
-    }
-  }
-  const ForceDistributionStatus fs = force_.compute(*model_meas_, vdot_d_, F_d_, contacts_);
-  if (fs == ForceDistributionStatus::kFailed || !force_.tauFeedforward().allFinite()) {
-    ++counters_.force_failures;
-  } else {
-    if (fs == ForceDistributionStatus::kRelaxed) ++counters_.force_relaxed;
-    // never command a feed-forward beyond the effort limits (the drive would saturate it anyway)
-    good_tau_ff_ = force_.tauFeedforward().cwiseMax(-tau_max_).cwiseMin(tau_max_);
-  }
+  // 7. force distribution
+  distributeForces();
   // 8. command
   good_q_ref_ = q_ref_;
   command.q_ref = q_ref_;

@@ -150,6 +150,8 @@ class WholeBodyController final : public Controller {
  private:
   bool finiteInput(const RobotState& s) const noexcept;
   void holdCurrentReferences() noexcept;
+  bool estimate(const RobotState& state) noexcept;
+  void distributeForces() noexcept;
   void enterSafe(WholeBodyStatus why, JointCommand& command) noexcept;
   void writeSafe(JointCommand& command) noexcept;
 

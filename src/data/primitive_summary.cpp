@@ -17,6 +17,48 @@ void requireRows(const Primitive& p, const RowMatrix& m, Eigen::Index cols, cons
   }
 }
 
+// One foot's contact phases (marking the samples where it is in contact as not airborne) and its peak forces.
+FootSummary footSummary(const Primitive& p, std::size_t f, std::vector<bool>& airborne) {
+  const Eigen::Index n = p.t.size();
+  FootSummary foot;
+  foot.name = kFootNames[f];
+  std::vector<bool> in_contact(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const bool c = p.contact(i, static_cast<Eigen::Index>(f)) > 0.5;
+    in_contact[static_cast<std::size_t>(i)] = c;
+    if (c) airborne[static_cast<std::size_t>(i)] = false;
+  }
+  foot.stance = intervalsWhere(p.t, in_contact, true);
+  foot.swing = intervalsWhere(p.t, in_contact, false);
+  for (const TimeInterval& iv : foot.stance) foot.stance_time += iv.duration();
+  foot.lift_off_time = foot.touch_down_time = kNaN;
+  for (std::size_t k = 0; k < foot.stance.size(); ++k) {
+    const bool followed_by_swing = k + 1 < foot.stance.size() || !in_contact.back();
+    if (followed_by_swing) {
+      foot.lift_off_time = foot.stance[k].end;
+      if (k + 1 < foot.stance.size()) foot.touch_down_time = foot.stance[k + 1].start;
+      break;
+    }
+  }
+  // peak forces
+  foot.peak_force_norm_time = foot.peak_force_z_time = p.t(0);
+  foot.peak_force_z = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto c = static_cast<Eigen::Index>(3 * f);
+    const double fx = p.force(i, c), fy = p.force(i, c + 1), fz = p.force(i, c + 2);
+    const double norm = std::sqrt(fx * fx + fy * fy + fz * fz);
+    if (norm > foot.peak_force_norm) {
+      foot.peak_force_norm = norm;
+      foot.peak_force_norm_time = p.t(i);
+    }
+    if (fz > foot.peak_force_z) {
+      foot.peak_force_z = fz;
+      foot.peak_force_z_time = p.t(i);
+    }
+  }
+  return foot;
+}
+
 }  // namespace
 
 std::vector<TimeInterval> intervalsWhere(const Eigen::VectorXd& t, const std::vector<bool>& flags, bool value) {
@@ -58,44 +100,7 @@ PrimitiveSummary summarize(const Primitive& p) {
 
   // ---- contact phases ---------------------------------------------------------------------------
   std::vector<bool> airborne(static_cast<std::size_t>(n), true);
-  for (std::size_t f = 0; f < 4; ++f) {
-    FootSummary& foot = s.feet[f];
-    foot.name = kFootNames[f];
-    std::vector<bool> in_contact(static_cast<std::size_t>(n));
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const bool c = p.contact(i, static_cast<Eigen::Index>(f)) > 0.5;
-      in_contact[static_cast<std::size_t>(i)] = c;
-      if (c) airborne[static_cast<std::size_t>(i)] = false;
-    }
-    foot.stance = intervalsWhere(p.t, in_contact, true);
-    foot.swing = intervalsWhere(p.t, in_contact, false);
-    for (const TimeInterval& iv : foot.stance) foot.stance_time += iv.duration();
-    foot.lift_off_time = foot.touch_down_time = kNaN;
-    for (std::size_t k = 0; k < foot.stance.size(); ++k) {
-      const bool followed_by_swing = k + 1 < foot.stance.size() || !in_contact.back();
-      if (followed_by_swing) {
-        foot.lift_off_time = foot.stance[k].end;
-        if (k + 1 < foot.stance.size()) foot.touch_down_time = foot.stance[k + 1].start;
-        break;
-      }
-    }
-    // peak forces
-    foot.peak_force_norm_time = foot.peak_force_z_time = p.t(0);
-    foot.peak_force_z = -std::numeric_limits<double>::infinity();
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const auto c = static_cast<Eigen::Index>(3 * f);
-      const double fx = p.force(i, c), fy = p.force(i, c + 1), fz = p.force(i, c + 2);
-      const double norm = std::sqrt(fx * fx + fy * fy + fz * fz);
-      if (norm > foot.peak_force_norm) {
-        foot.peak_force_norm = norm;
-        foot.peak_force_norm_time = p.t(i);
-      }
-      if (fz > foot.peak_force_z) {
-        foot.peak_force_z = fz;
-        foot.peak_force_z_time = p.t(i);
-      }
-    }
-  }
+  for (std::size_t f = 0; f < 4; ++f) s.feet[f] = footSummary(p, f, airborne);
   s.flight = intervalsWhere(p.t, airborne, true);
   for (const TimeInterval& iv : s.flight) s.flight_time += iv.duration();
   if (!s.flight.empty()) {
