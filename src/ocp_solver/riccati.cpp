@@ -77,19 +77,17 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
   // triangle only).
   Eigen::MatrixXd& F = cost_scratch_.F;
   Eigen::MatrixXd& K = cost_scratch_.K;
-  const Eigen::MatrixXd& Qp = cost_scratch_.Qp;
+  Eigen::MatrixXd& Qp = cost_scratch_.Qp;
   F = Qp.block(w, 0, r, w);
   F.noalias() += 0.5 * Qp.bottomRightCorner(r, r) * s.E;
-  // Where rows were eliminated Qh is formed in the scratch; otherwise it is Qp itself (w = n) or empty (w = 0).
+  // Where rows were eliminated Qh is formed in place of Qp_WW, whose lower triangle nothing reads afterwards (the
+  // solves' copies below are of u_B's rows and columns); otherwise Qh is Qp itself (w = n) or empty (w = 0).
   const bool formed = s.lowerOnlyCols() > 0;  // r > 0 and w > 0; Qp's upper part of these columns was not formed
+  const auto Qh = Qp.topLeftCorner(w, w);
   if (formed) {
-    Eigen::MatrixXd& Qw = cost_scratch_.Qh;
-    Qw.resize(w, w);
-    Qw.triangularView<Eigen::Lower>() = Qp.topLeftCorner(w, w);
-    Qw.triangularView<Eigen::Lower>() += s.E.transpose() * F;
-    Qw.triangularView<Eigen::Lower>() += F.transpose() * s.E;
+    Qp.topLeftCorner(w, w).triangularView<Eigen::Lower>() += s.E.transpose() * F;
+    Qp.topLeftCorner(w, w).triangularView<Eigen::Lower>() += F.transpose() * s.E;
   }
-  const Eigen::MatrixXd& Qh = formed ? cost_scratch_.Qh : Qp;
   // The solves read only the blocks of x and u_N; above the diagonal that block is the mirror of the one below when
   // Qh was formed in its lower triangle.
   s.Qp_zB = Qp.rightCols(r);

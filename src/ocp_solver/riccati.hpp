@@ -162,9 +162,9 @@ class RiccatiSolver {
   struct CostScratch {
     Eigen::MatrixXd PM, PMt;  // P_{k+1} M and its transpose
     Eigen::MatrixXd F;        // Qp_BW + 1/2 Qp_BB E
-    Eigen::MatrixXd Qp;       // the stage cost plus the pulled-back cost-to-go (H + M' P M), in elimination order
-    Eigen::MatrixXd K;        // L^{-1} Qh_{N x}
-    Eigen::MatrixXd Qh;       // reduced Hessian on [x; u_N], lower triangle (where rows were eliminated)
+    Eigen::MatrixXd Qp;  // the stage cost plus the pulled-back cost-to-go (H + M' P M), in elimination order; where
+                         // rows were eliminated, its [x; u_N] block then becomes the reduced Hessian (lower triangle)
+    Eigen::MatrixXd K;   // L^{-1} Qh_{N x}
   };
   RowScratch row_scratch_;
   CostScratch cost_scratch_;
