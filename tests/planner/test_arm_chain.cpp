@@ -191,12 +191,13 @@ void checkElement(const E& e, const Fixture& f, unsigned seed, double scale_in =
     }
     e.evalHessianForward(x.data(), w.data(), Hf.data());
     for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H[k], Hf[k]), 1e-10) << e.name();
-    // Both from one evaluation (what the planner's derivatives call): the same values.
+    // Both from one evaluation (what the planner's derivatives call): the same values, to rounding (two summation
+    // orders: up to ~2e-14 where the compiler contracts products into FMAs, an AVX2 build).
     std::vector<double> y2(no, -7.0), J2(no * ni, -7.0), H2(ni * ni, -7.0);
     e.evalJacobianHessian(x.data(), w.data(), y2.data(), J2.data(), H2.data());
-    for (int j = 0; j < no; ++j) EXPECT_LT(relErr(y2[j], y[j]), 1e-15) << e.name();
-    for (int k = 0; k < no * ni; ++k) EXPECT_LT(relErr(J2[k], J[k]), 1e-14) << e.name() << " J[" << k << "]";
-    for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H2[k], H[k]), 1e-14) << e.name() << " H[" << k << "]";
+    for (int j = 0; j < no; ++j) EXPECT_LT(relErr(y2[j], y[j]), 1e-13) << e.name();
+    for (int k = 0; k < no * ni; ++k) EXPECT_LT(relErr(J2[k], J[k]), 1e-13) << e.name() << " J[" << k << "]";
+    for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H2[k], H[k]), 1e-13) << e.name() << " H[" << k << "]";
     // Declared constant derivatives are constant (the Ocp evaluates them once).
     std::vector<double> y3(no), J3(no * ni), H3(ni * ni), x2(ni);
     for (auto& v : x2) v = U(rng);

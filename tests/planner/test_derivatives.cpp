@@ -84,12 +84,13 @@ void checkElement(const Element& e, unsigned seed) {
     for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H[k], Hfd[k]), 1e-6) << e.name() << " H[" << k << "]";
     for (int a = 0; a < ni; ++a)
       for (int b = 0; b < ni; ++b) EXPECT_LT(relErr(H[a * ni + b], H[b * ni + a]), 1e-12) << e.name();
-    // Both from one evaluation (what the planner's derivatives call): the same values, Jacobian and Hessian.
+    // Both from one evaluation (what the planner's derivatives call): the same values, Jacobian and Hessian, to
+    // rounding (two summation orders: up to ~2e-14 where the compiler contracts products into FMAs, an AVX2 build).
     std::vector<double> f3(no, -7.0), J3(no * ni, -7.0), H3(ni * ni, -7.0);
     e.evalJacobianHessian(x.data(), w.data(), f3.data(), J3.data(), H3.data());
-    for (int j = 0; j < no; ++j) EXPECT_LT(relErr(f3[j], f[j]), 1e-14) << e.name();
-    for (int k = 0; k < no * ni; ++k) EXPECT_LT(relErr(J3[k], J[k]), 1e-14) << e.name() << " J[" << k << "]";
-    for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H3[k], H[k]), 1e-14) << e.name() << " H[" << k << "]";
+    for (int j = 0; j < no; ++j) EXPECT_LT(relErr(f3[j], f[j]), 1e-13) << e.name();
+    for (int k = 0; k < no * ni; ++k) EXPECT_LT(relErr(J3[k], J[k]), 1e-13) << e.name() << " J[" << k << "]";
+    for (int k = 0; k < ni * ni; ++k) EXPECT_LT(relErr(H3[k], H[k]), 1e-13) << e.name() << " H[" << k << "]";
     // Declared constant derivatives are constant (the Ocp evaluates them once).
     std::vector<double> x2(ni), J2(no * ni), H2(ni * ni);
     for (auto& v : x2) v = 2.0 * U(rng);
