@@ -71,17 +71,19 @@ struct TapeVar {
   TapeVar& operator*=(const TapeVar& o) { return *this = *this * o; }
   TapeVar& operator/=(const TapeVar& o) { return *this = *this / o; }
 
+  // A constant that is exactly zero records nothing: x + 0, x - 0 and 0 + x are x's node (the value x + 0 differs
+  // from x at most in the sign of a zero), 0 * x is the constant 0. Their derivatives would add exact zeros.
   friend TapeVar operator+(const TapeVar& x, const TapeVar& y) {
     const double r = x.v + y.v;
     if (x.i < 0 && y.i < 0) return TapeVar(r);
-    if (y.i < 0) return TapeVar(r, activeTape().push(r, x.i, 1.0, -1, 0.0, 0, 0, 0, false));
-    if (x.i < 0) return TapeVar(r, activeTape().push(r, y.i, 1.0, -1, 0.0, 0, 0, 0, false));
+    if (y.i < 0) return TapeVar(r, y.v == 0.0 ? x.i : activeTape().push(r, x.i, 1.0, -1, 0.0, 0, 0, 0, false));
+    if (x.i < 0) return TapeVar(r, x.v == 0.0 ? y.i : activeTape().push(r, y.i, 1.0, -1, 0.0, 0, 0, 0, false));
     return TapeVar(r, activeTape().push(r, x.i, 1.0, y.i, 1.0, 0, 0, 0, false));
   }
   friend TapeVar operator-(const TapeVar& x, const TapeVar& y) {
     const double r = x.v - y.v;
     if (x.i < 0 && y.i < 0) return TapeVar(r);
-    if (y.i < 0) return TapeVar(r, activeTape().push(r, x.i, 1.0, -1, 0.0, 0, 0, 0, false));
+    if (y.i < 0) return TapeVar(r, y.v == 0.0 ? x.i : activeTape().push(r, x.i, 1.0, -1, 0.0, 0, 0, 0, false));
     if (x.i < 0) return TapeVar(r, activeTape().push(r, y.i, -1.0, -1, 0.0, 0, 0, 0, false));
     return TapeVar(r, activeTape().push(r, x.i, 1.0, y.i, -1.0, 0, 0, 0, false));
   }
@@ -93,8 +95,8 @@ struct TapeVar {
   friend TapeVar operator*(const TapeVar& x, const TapeVar& y) {
     const double r = x.v * y.v;
     if (x.i < 0 && y.i < 0) return TapeVar(r);
-    if (y.i < 0) return TapeVar(r, activeTape().push(r, x.i, y.v, -1, 0.0, 0, 0, 0, false));
-    if (x.i < 0) return TapeVar(r, activeTape().push(r, y.i, x.v, -1, 0.0, 0, 0, 0, false));
+    if (y.i < 0) return y.v == 0.0 ? TapeVar(r) : TapeVar(r, activeTape().push(r, x.i, y.v, -1, 0.0, 0, 0, 0, false));
+    if (x.i < 0) return x.v == 0.0 ? TapeVar(r) : TapeVar(r, activeTape().push(r, y.i, x.v, -1, 0.0, 0, 0, 0, false));
     if (x.i == y.i) return TapeVar(r, activeTape().push(r, x.i, 2.0 * x.v, -1, 0.0, 2.0, 0, 0, true));
     return TapeVar(r, activeTape().push(r, x.i, y.v, y.i, x.v, 0.0, 1.0, 0.0, true));
   }

@@ -118,7 +118,24 @@ struct TapeOpsElement : AdElement<TapeOpsElement, 5, 4, 3> {
     out[0] = a * a * b / (S(2.0) + c * c) - S(3.0) / (S(1.5) + b * b) + b / S(4.0) + in[3] * a;
     out[1] = sqrt(S(2.0) + a * a + b * c) * sin(c) - cos(a * b) + in[4] * cos(c);
     out[2] = (a - b) * (a - b) + a / a - (-c) * (S(1.0) - a) + in[3] - S(2.0) * in[4];
-    out[3] = S(0.5) * in[4] + in[3] * (b + c);
+    out[3] = S(0.5) * in[4] + in[3] * (b + c) + (c + S(0.0)) * (c - S(0.0)) + S(0.0) * a + (S(0.0) + b) * S(0.0);
+  }
+};
+
+// Zero constants record nothing (x + 0, x - 0, 0 + x are x, 0 * x the constant 0): the same tape, Jacobian and
+// Hessian as the function written without them.
+struct WithZeros : AdElement<WithZeros, 2, 1> {
+  const char* name() const override { return "with_zeros"; }
+  template <class S>
+  void compute(const S* in, S* out) const {
+    out[0] = (in[0] + S(0.0)) * (S(0.0) + in[1] - S(0.0)) + S(0.0) * in[0] * in[1] + in[0] * in[0];
+  }
+};
+struct WithoutZeros : AdElement<WithoutZeros, 2, 1> {
+  const char* name() const override { return "without_zeros"; }
+  template <class S>
+  void compute(const S* in, S* out) const {
+    out[0] = in[0] * in[1] + in[0] * in[0];
   }
 };
 
@@ -142,6 +159,21 @@ TEST(Derivatives, ReverseTapeCoversEveryOperation) {
   checkElement(TapeOpsElement(), 80);
   checkElement(TapeOpsElement(), 81);
   checkTapeAgainstForward(TapeOpsElement(), 82);
+}
+
+TEST(Derivatives, ZeroConstantsRecordNothingOnTheTape) {
+  const double x[2] = {0.7, -1.3}, w[1] = {2.5};
+  double f[2], J[2][2], H[2][4];
+  WithZeros().evalJacobianHessian(x, w, &f[0], J[0], H[0]);
+  const int with_zeros = rad::activeTape().size();
+  WithoutZeros().evalJacobianHessian(x, w, &f[1], J[1], H[1]);
+  EXPECT_EQ(with_zeros, rad::activeTape().size());
+  EXPECT_EQ(f[0], f[1]);
+  for (int k = 0; k < 2; ++k) EXPECT_EQ(J[0][k], J[1][k]);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(H[0][k], H[1][k]);
+  EXPECT_DOUBLE_EQ(H[0][1], 2.5);  // d2/dx0 dx1 of w x0 x1
+  EXPECT_DOUBLE_EQ(H[0][0], 5.0);  // d2/dx0^2 of w x0^2
+  checkElement(WithZeros(), 83);
 }
 
 TEST(Derivatives, ReverseTapeHessianEqualsNestedForwardHessian) {
