@@ -71,8 +71,9 @@ struct TapeVar {
   TapeVar& operator*=(const TapeVar& o) { return *this = *this * o; }
   TapeVar& operator/=(const TapeVar& o) { return *this = *this / o; }
 
-  // A constant that is exactly zero records nothing: x + 0, x - 0 and 0 + x are x's node (the value x + 0 differs
-  // from x at most in the sign of a zero), 0 * x is the constant 0. Their derivatives would add exact zeros.
+  // A constant that is exactly zero records nothing: 0 * x is the constant 0 (its node would only add exact zeros),
+  // and x + 0, x - 0 and 0 + x are x's node (the value differs from x at most in the sign of a zero; a node would
+  // pass x's tangent and adjoint on unchanged, so only the order in which x's adjoint sums its parts can change).
   friend TapeVar operator+(const TapeVar& x, const TapeVar& y) {
     const double r = x.v + y.v;
     if (x.i < 0 && y.i < 0) return TapeVar(r);
