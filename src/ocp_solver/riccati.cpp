@@ -80,8 +80,8 @@ bool RiccatiSolver::eliminateCost(Stage& s) {
   Eigen::MatrixXd& Qp = cost_scratch_.Qp;
   F = Qp.block(w, 0, r, w);
   F.noalias() += 0.5 * Qp.bottomRightCorner(r, r) * s.E;
-  // Where rows were eliminated Qh is formed in place of Qp_WW, whose lower triangle nothing reads afterwards (the
-  // solves' copies below are of u_B's rows and columns); otherwise Qh is Qp itself (w = n) or empty (w = 0).
+  // Where rows were eliminated Qh is formed in place of Qp_WW, which nothing else reads afterwards (the solves'
+  // copies below are of u_B's rows and columns); otherwise Qh is Qp itself (w = n) or empty (w = 0).
   const bool formed = s.lowerOnlyCols() > 0;  // r > 0 and w > 0; Qp's upper part of these columns was not formed
   const auto Qh = Qp.topLeftCorner(w, w);
   if (formed) {
