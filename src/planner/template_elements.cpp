@@ -15,4 +15,19 @@ FrictionPyramidElement::FrictionPyramidElement(const Eigen::Vector3d& normal, do
   t2 = n.cross(t1);
 }
 
+void FootDynamicsElement::evalJacobian(const double* in, double* out, double* jac) const {
+  compute(in, out);
+  footDynamicsDerivatives(P, i, inv_scale, in, nullptr, jac, nullptr);
+}
+
+void FootDynamicsElement::evalHessian(const double* in, const double* w, double* hess) const {
+  footDynamicsDerivatives(P, i, inv_scale, in, w, nullptr, hess);
+}
+
+void FootDynamicsElement::evalJacobianHessian(const double* in, const double* w, double* out, double* jac,
+                                              double* hess) const {
+  compute(in, out);
+  footDynamicsDerivatives(P, i, inv_scale, in, w, jac, hess);
+}
+
 }  // namespace centaur::planner

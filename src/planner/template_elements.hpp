@@ -6,6 +6,7 @@
 
 #include "model/template_model.hpp"
 #include "planner/element.hpp"
+#include "planner/foot_dynamics_derivatives.hpp"
 
 namespace centaur::planner {
 
@@ -79,9 +80,15 @@ struct WaistDynamicsElement : AdElement<WaistDynamicsElement, 13, 6, 7> {
 
 /// Inputs: rho (4), omega (3), q_ci (3), qd_ci (3), pddot_u (3), omega_dot (3), qdd_ci (3), F_i (3).
 /// Outputs: 6 unactuated rows, then the 3 actuated rows of foot i.
+/// Its Jacobian and Hessian are written out by hand (foot_dynamics_derivatives.hpp, several times cheaper than the
+/// AD's and equal to them to rounding); the AdElement base's versions stay callable by qualified name (tests).
 struct FootDynamicsElement : AdElement<FootDynamicsElement, 25, 9, 13> {
+  using Ad = AdElement<FootDynamicsElement, 25, 9, 13>;
   FootDynamicsElement(const TemplateParams& p, int foot, double s) : P(p), i(foot), inv_scale(1.0 / s) {}
   const char* name() const override { return "dynamics_foot"; }
+  void evalJacobian(const double* in, double* out, double* jac) const override;
+  void evalHessian(const double* in, const double* w, double* hess) const override;
+  void evalJacobianHessian(const double* in, const double* w, double* out, double* jac, double* hess) const override;
   template <class S>
   void compute(const S* in, S* out) const {
     model::footDynamics(P, i, in, in + 4, in + 7, in + 10, in + 13, in + 16, in + 19, in + 22, out, out + 6);
