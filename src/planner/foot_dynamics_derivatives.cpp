@@ -192,7 +192,8 @@ void addInertiaCurvature(const FootPoint& p, const Weights& w, Hess& H, Mat3& Z)
   const Mat3 Ln = skew(ln);
   addSymmetric<3, 4>(H, kAl, kRho, dIf_ln);
   addSymmetric<3, 4>(H, kOm, kRho, dIf_v - Ln * dIf_om);
-  H.block<3, 3>(kOm, kOm) += p.If * Ln - Ln * p.If;
+  const Mat3 A = p.If * Ln;  // If [l_n]x - [l_n]x If = A + A^T, so written: symmetric to the last bit
+  H.block<3, 3>(kOm, kOm) += A + A.transpose();
 }
 
 void lagrangianHessian(const FootPoint& p, const Rows3& Df, const Vec3& lu, const Vec3& ln, const Vec3& lt,
