@@ -46,9 +46,9 @@ TEST(BackendsAgree, HalfSquatJumpSameOptimumAndPrimitive) {
   EXPECT_LT(maxDiff(a.base_pos, b.base_pos), 1e-3);
   EXPECT_LT(maxDiff(a.foot_pos, b.foot_pos), 1e-3);
   // The objective fixes the step sizes only to ~1e-4 s at tol 1e-8 (a flat valley), so the 1 kHz grids of the two
-  // solutions are shifted by up to a sample and forces that change quickly differ by a few newtons there (7 N of
-  // peaks of ~2 kN; the same bound as the variants).
-  EXPECT_LT(maxDiff(a.force, b.force), 10.0);
+  // solutions are shifted by up to a sample and forces that change quickly differ by a few newtons there (11 N of
+  // peaks of ~2 kN; 7 N with the foot dynamics' derivatives by AD, which round differently).
+  EXPECT_LT(maxDiff(a.force, b.force), 15.0);
   EXPECT_LT((a.knot_dt - b.knot_dt).cwiseAbs().maxCoeff(), 1e-3);
 }
 
