@@ -256,7 +256,7 @@ void BM_FootDynamicsHessian(benchmark::State& state) {
 }
 BENCHMARK(BM_FootDynamicsHessian);
 
-// Both from one recording, as the planner's derivatives evaluate them (the forward sweep carries all 25 directions).
+// Both at once, as the planner's derivatives evaluate them: the element's derivatives written out by hand.
 void BM_FootDynamicsJacobianHessian(benchmark::State& state) {
   const FootPoint p;
   double out[9], jac[9 * 25], hess[25 * 25];
@@ -267,6 +267,18 @@ void BM_FootDynamicsJacobianHessian(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_FootDynamicsJacobianHessian);
+
+// The same by the generic AD (one tape recording; the forward sweep carries all 25 directions), for comparison.
+void BM_FootDynamicsJacobianHessianTape(benchmark::State& state) {
+  const FootPoint p;
+  double out[9], jac[9 * 25], hess[25 * 25];
+  for (auto _ : state) {
+    p.e.FootDynamicsElement::Ad::evalJacobianHessian(p.x, p.w, out, jac, hess);
+    benchmark::DoNotOptimize(jac);
+    benchmark::DoNotOptimize(hess);
+  }
+}
+BENCHMARK(BM_FootDynamicsJacobianHessianTape);
 
 // The same Hessian by nested forward AD (the previous method), for comparison.
 void BM_FootDynamicsHessianNestedForward(benchmark::State& state) {
