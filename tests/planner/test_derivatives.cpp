@@ -181,6 +181,7 @@ TEST(Derivatives, ReverseTapeHessianEqualsNestedForwardHessian) {
   checkTapeAgainstForward(QuaternionStep(), 90);
   checkTapeAgainstForward(WaistDynamicsElement(P, 7.0), 91);
   for (int i = 0; i < 4; ++i) {
+    // Its evalHessian is written out by hand (the tape's own: FootDynamicsDerivatives.*); against forward AD too.
     checkTapeAgainstForward(FootDynamicsElement(P, i, 7.0), 92 + i);
     checkTapeAgainstForward(FootDisplacementElement(P, i), 96 + i);
     checkTapeAgainstForward(FootVelocitySquared(P, i), 100 + i);
