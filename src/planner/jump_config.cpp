@@ -58,6 +58,7 @@ cost:
   stance_foot_velocity: 100.0
   velocity_regularization: 0.0
   base_angular_velocity: 1000.0
+  last_interval: 1.0e-3
 solver:
   backend: ipopt
   tol: 1.0e-8
@@ -76,6 +77,7 @@ contact:
 cost:
   base_height: 0.0
   base_pose: 50.0
+  last_interval: 0.0
 )";
 
 
@@ -198,6 +200,7 @@ void readCost(YamlReader& r, JumpConfig& c) {
   k.get("stance_foot_velocity", c.cost.stance_foot_velocity, 0.0, 1e8);
   k.get("velocity_regularization", c.cost.velocity_regularization, 0.0, 1e6);
   k.get("base_angular_velocity", c.cost.base_angular_velocity, 0.0, 1e8);
+  k.get("last_interval", c.cost.last_interval, 0.0, 1e6);
   k.finish();
 }
 

@@ -61,6 +61,8 @@ struct CostConfig {
   double base_angular_velocity = 1000.0;///< |omega_u|^2 on every node: the template's legs accelerate in the waist
                                         ///< frame, so waist rotation makes the motion between knots deviate from
                                         ///< the dynamics enforced at the knots
+  double last_interval = 1.0e-3;        ///< dt_{N_s-1}^2 [1/s^2]: the robot is at rest through the last interval,
+                                        ///< so nothing else fixes its length (squat jump; 0 for the half-squat jump)
 };
 
 struct JumpConfig {

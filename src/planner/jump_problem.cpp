@@ -268,6 +268,10 @@ void JumpProblem::buildCosts() {
     auto e = std::make_shared<SquaredError<3>>(Eigen::Vector3d::Zero(), "base_angular_velocity");
     for (int k = 1; k <= N_; ++k) ocp_.addCost("base_angular_velocity", e, idx("nu", k, 3, 3), C.base_angular_velocity);
   }
+  if (C.last_interval > 0) {  // the last interval's step size, which nothing else fixes once the robot is at rest
+    auto e = std::make_shared<SquaredError<1>>(Eigen::Matrix<double, 1, 1>::Zero(), "last_interval");
+    ocp_.addCost("last_interval", e, idx("dt", N_ - 1, 0, 1), C.last_interval);
+  }
   const Eigen::Vector4d rho0(1, 0, 0, 0);
   if (C.base_orientation > 0) {
     auto e = std::make_shared<SquaredError<4>>(rho0, "base_orientation");
