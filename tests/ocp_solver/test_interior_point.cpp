@@ -2,7 +2,7 @@
 // The interior-point method on small NLPs with known solutions (dense KKT solver): Hock-Schittkowski 71
 // (Ipopt's example), a bound-constrained problem whose solution sits on bounds, an equality-constrained
 // nonconvex problem that needs the inertia correction, and failures reported as statuses: an infeasible
-// problem (restoration fails) and an iteration limit.
+// problem (restoration fails), an iteration limit, and a line search that fails at an acceptable iterate.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -381,6 +381,46 @@ TEST(InteriorPoint, TheWatchdogTakesFullStepsAfterTenShortenedOnesAndReturnsWhen
   EXPECT_NEAR(r.x[0], 20.0, 1e-6);
   EXPECT_GE(r.stats.watchdog_starts, 1);
   EXPECT_GE(r.stats.watchdog_returns, 1);
+}
+
+TEST(InteriorPoint, ALineSearchThatFailsAtAnAcceptableIterateEndsThereSolvedAcceptable) {
+  // min |x - (1, 1)|^2 / 2 s.t. x0 + x1 = 1, where the constraint cannot be evaluated within 1e-9 of feasibility
+  // (NaN there): the line search halves the steps towards the constraint until the violation nears 1e-9, then
+  // fails for good. The iterate is acceptable (violation and dual error ~1e-9, under 1e-6) but not optimal at
+  // tol 1e-12, and too infeasible (1e-9 > 1e-2 tol) for the rule that takes back the last acceptable iterate of an
+  // almost feasible point. Ipopt's rule before its restoration phase ends the solve there, `solved_acceptable`; a
+  // restoration phase could only fail against the same wall.
+  LambdaNlp q;
+  q.n = 2;
+  q.m = 1;
+  q.xl = Eigen::Vector2d::Constant(-kInf);
+  q.xu = Eigen::Vector2d::Constant(kInf);
+  q.gl = Eigen::VectorXd::Zero(1);
+  q.gu = Eigen::VectorXd::Zero(1);
+  q.x0 = Eigen::Vector2d::Zero();
+  q.f = [](const Eigen::VectorXd& x) { return 0.5 * (x - Eigen::Vector2d::Ones()).squaredNorm(); };
+  q.g = [](const Eigen::VectorXd& x) {
+    const double c = x[0] + x[1] - 1.0;
+    return Eigen::VectorXd::Constant(1, std::abs(c) < 1e-9 ? std::numeric_limits<double>::quiet_NaN() : c);
+  };
+  q.grad = [](const Eigen::VectorXd& x) { return Eigen::VectorXd(x - Eigen::Vector2d::Ones()); };
+  q.jac = [](const Eigen::VectorXd&) { return Eigen::MatrixXd::Ones(1, 2); };
+  q.hess = [](const Eigen::VectorXd&, double s, const Eigen::VectorXd&) {
+    return Eigen::MatrixXd(s * Eigen::Matrix2d::Identity());
+  };
+  q.finalize();
+  IpmOptions o;
+  o.tol = 1e-12;
+  o.acceptable_iter = 100000;  // not by 15 acceptable iterations in a row
+  o.max_iter = 1000;
+  const IpmResult r = solve(q, o);
+  ASSERT_EQ(r.status, IpmStatus::kAcceptable) << toString(r.status) << " after " << r.stats.iterations;
+  EXPECT_LT(r.stats.iterations, o.max_iter);
+  EXPECT_EQ(r.stats.restoration_iterations, 0);
+  EXPECT_GE(r.constraint_violation, 1e-9);
+  EXPECT_LT(r.constraint_violation, 1e-6);
+  EXPECT_NEAR(r.x[0], 0.5, 1e-6);  // the minimiser on the line x0 + x1 = 1
+  EXPECT_NEAR(r.x[1], 0.5, 1e-6);
 }
 
 TEST(InteriorPoint, InfeasibleProblemEndsAsAStatus) {
