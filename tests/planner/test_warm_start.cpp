@@ -120,7 +120,8 @@ TEST(WarmStart, TheLastIntervalCostFixesTheStepTheRobotRestsThroughAndTheReplanI
   ASSERT_TRUE(rf.info.solved());
   const double dt_min = p.config().horizon.dt_min;
   const data::Primitive prim = p.toPrimitive(r), prim_free = free_last.toPrimitive(rf);
-  const double last = prim.knot_dt[prim.knot_dt.size() - 1], last_free = prim_free.knot_dt[prim_free.knot_dt.size() - 1];
+  const double last = prim.knot_dt[prim.knot_dt.size() - 1];
+  const double last_free = prim_free.knot_dt[prim_free.knot_dt.size() - 1];
   EXPECT_NEAR(last, dt_min, 1e-4);  // at the bound, up to the barrier (7.8e-6 s)
   EXPECT_GT(last_free, dt_min + 1e-3);  // inside its bounds: nothing but weak terms holds it there
   EXPECT_LT(std::abs(r.info.cost - rf.info.cost) / std::abs(rf.info.cost), 1e-6)
