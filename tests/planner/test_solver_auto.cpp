@@ -27,9 +27,8 @@ TEST(SolverAuto, KeepsRiccatisResultWhereItConverges) {
 }
 
 // A point of docs/planner.md's squat-jump grid (the centauro model, mu 0.8, target 0.8 m) where riccati stops at an
-// acceptable point (solved_acceptable after 210 iterations, not solved) and Ipopt converges. (Until the foot
-// dynamics' derivatives were written by hand, 2026-12-05, this was the authors' model at mu 0.4, which riccati now
-// solves.)
+// acceptable point (solved_acceptable after 114 iterations, not solved) and Ipopt converges. Which grid point that is
+// moves with riccati's rounding; the assertion below says when to pick another.
 TEST(SolverAuto, FallsBackToIpoptFromTheSameStartWhereRiccatiDoesNotConverge) {
   const JumpProblem p(loadJumpConfig(
       "squat-jump", "", {"model.preset=centauro", "contact.mu=0.8", "target.height=0.8"}));
