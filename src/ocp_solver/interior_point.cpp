@@ -174,37 +174,36 @@ void Ipm::barrierGradient(double mu, Vec& gx, Vec& gs) const {
   }
 }
 
-// Ipopt's optimality error of the barrier problem (mu > 0) or of the NLP (mu = 0): scaled by s_d, s_c; with
-// `unscaled_check` the components are returned in the NLP's own variables.
-double Ipm::optimalityError(double mu, bool unscaled_check, double* dual_out, double* primal_out,
-                            double* compl_out) const {
+// The stationarity, primal and complementarity residuals; the dual part in both the scaled and the NLP's
+// variables (one pass serves the convergence test and the unscaled checks).
+Ipm::OptimalityError Ipm::optimalityError(double mu) const {
   const SparsePattern& p = nlp_.pattern();
   Vec rd = grad_;
   for (std::size_t t = 0; t < p.jac_rows.size(); ++t) rd[p.jac_cols[t]] += jac_[t] * y_[p.jac_rows[t]];
   rd -= zl_;
   rd += zu_;
-  double dual = 0.0, compl_err = 0.0, mult1 = y_.lpNorm<1>(), bmult1 = 0.0;
+  OptimalityError e;
+  double mult1 = y_.lpNorm<1>(), bmult1 = 0.0;
   int nb = 0;
   for (int i = 0; i < n_; ++i) {
     if (fixed_[i]) continue;
-    dual = std::max(dual, std::abs(unscaled_check ? rd[i] / D_[i] : rd[i]));
-    if (has_xl_[i]) compl_err = std::max(compl_err, std::abs((x_[i] - xl_[i]) * zl_[i] - mu)), bmult1 += zl_[i], ++nb;
-    if (has_xu_[i]) compl_err = std::max(compl_err, std::abs((xu_[i] - x_[i]) * zu_[i] - mu)), bmult1 += zu_[i], ++nb;
+    e.dual = std::max(e.dual, std::abs(rd[i]));
+    e.dual_unscaled = std::max(e.dual_unscaled, std::abs(rd[i] / D_[i]));
+    if (has_xl_[i]) e.compl_err = std::max(e.compl_err, std::abs((x_[i] - xl_[i]) * zl_[i] - mu)), bmult1 += zl_[i], ++nb;
+    if (has_xu_[i]) e.compl_err = std::max(e.compl_err, std::abs((xu_[i] - x_[i]) * zu_[i] - mu)), bmult1 += zu_[i], ++nb;
   }
   for (int r = 0; r < m_; ++r) {
     if (!ineq_[r]) continue;
-    dual = std::max(dual, std::abs(-y_[r] - vl_[r] + vu_[r]));
-    if (has_gl_[r]) compl_err = std::max(compl_err, std::abs((s_[r] - gl_[r]) * vl_[r] - mu)), bmult1 += vl_[r], ++nb;
-    if (has_gu_[r]) compl_err = std::max(compl_err, std::abs((gu_[r] - s_[r]) * vu_[r] - mu)), bmult1 += vu_[r], ++nb;
+    const double rs = std::abs(-y_[r] - vl_[r] + vu_[r]);
+    e.dual = std::max(e.dual, rs);
+    e.dual_unscaled = std::max(e.dual_unscaled, rs);
+    if (has_gl_[r]) e.compl_err = std::max(e.compl_err, std::abs((s_[r] - gl_[r]) * vl_[r] - mu)), bmult1 += vl_[r], ++nb;
+    if (has_gu_[r]) e.compl_err = std::max(e.compl_err, std::abs((gu_[r] - s_[r]) * vu_[r] - mu)), bmult1 += vu_[r], ++nb;
   }
-  const double primal = m_ ? rp_.cwiseAbs().maxCoeff() : 0.0;
-  if (dual_out) *dual_out = dual;
-  if (primal_out) *primal_out = primal;
-  if (compl_out) *compl_out = compl_err;
-  if (unscaled_check) return std::max({dual, primal, compl_err});
-  const double sd = std::max(kSmax, (mult1 + bmult1) / std::max(1, m_ + nb)) / kSmax;
-  const double sc = std::max(kSmax, bmult1 / std::max(1, nb)) / kSmax;
-  return std::max({dual / sd, primal, compl_err / sc});
+  e.primal = m_ ? rp_.cwiseAbs().maxCoeff() : 0.0;
+  e.sd = std::max(kSmax, (mult1 + bmult1) / std::max(1, m_ + nb)) / kSmax;
+  e.sc = std::max(kSmax, bmult1 / std::max(1, nb)) / kSmax;
+  return e;
 }
 
 void Ipm::safeguardMultipliers() {
@@ -310,10 +309,9 @@ void Ipm::initialize() {
   mu_max_ = 0.0;
 }
 
-void Ipm::printIteration(char mode) const {
+void Ipm::printIteration(char mode, const OptimalityError& e) const {
   if (!opt_.progress) return;
-  double dual = 0.0, primal = 0.0;
-  optimalityError(0.0, true, &dual, &primal);
+  const double dual = e.dual_unscaled, primal = e.primal;
   std::fprintf(stderr, "  iter %4d%c cost %12.6e  infeas %9.2e  dual %9.2e  mu %8.1e  |dx| %8.1e  reg %8.1e  a %8.2e %c %d\n",
                stats_.iterations, mode, f_, primal, dual, mu_, d_.x.size() ? d_.x.cwiseAbs().maxCoeff() : 0.0,
                delta_w_, alpha_primal_, ls_type_, ls_trials_);
@@ -360,11 +358,11 @@ IpmResult Ipm::run() {
   res.status = IpmStatus::kMaxIterations;
   for (;;) {
     primalResidual(g_, s_, rp_);
-    double dual = 0.0, primal = 0.0, compl_err = 0.0;
-    optimalityError(0.0, true, &dual, &primal, &compl_err);
-    const double err = optimalityError(0.0, false);
+    const OptimalityError e = optimalityError(0.0);
+    const double dual = e.dual_unscaled, primal = e.primal, compl_err = e.compl_err;
+    const double err = e.scaled();
     nlp_error_ = err;
-    printIteration(' ');
+    printIteration(' ', e);
     if (err <= opt_.tol && dual <= opt_.dual_inf_tol && primal <= opt_.constr_viol_tol && compl_err <= opt_.compl_inf_tol) {
       res.status = IpmStatus::kSolved;
       break;

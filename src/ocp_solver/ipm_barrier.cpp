@@ -66,7 +66,7 @@ double Ipm::averageComplementarity() const {
 void Ipm::monotoneUpdate() {
   const double mu_min = adaptive_ ? kMuMin : opt_.tol / 10.0;
   bool changed = false;
-  while (mu_ > mu_min && (tiny_step_ || optimalityError(mu_, false) <= kKappaEps * mu_)) {
+  while (mu_ > mu_min && (tiny_step_ || optimalityError(mu_).scaled() <= kKappaEps * mu_)) {
     mu_ = std::max(mu_min, std::min(kKappaMu * mu_, std::pow(mu_, kThetaMu)));
     tau_ = std::max(kTauMin, 1.0 - mu_);
     changed = true;

@@ -1,6 +1,7 @@
 #pragma once
 // Internal to the interior-point method (interior_point.cpp, ipm_direction.cpp, ipm_line_search.cpp): the
 // problem in scaled variables, the primal-dual iterate and the search direction.
+#include <algorithm>
 #include <chrono>
 
 #include "ocp_solver/interior_point.hpp"
@@ -40,8 +41,16 @@ class Ipm {
   double theta(const Vec& g, const Vec& s) const;
   double barrierObjective(double f, const Vec& x, const Vec& s) const;
   void barrierGradient(double mu, Vec& gx, Vec& gs) const;
-  double optimalityError(double mu, bool unscaled_check, double* dual = nullptr, double* primal = nullptr,
-                         double* compl_out = nullptr) const;
+  /// Ipopt's optimality error of the barrier problem (mu > 0) or of the NLP (mu = 0), its parts computed once for
+  /// both of its uses: scaled() for the convergence test, the parts for the checks in the NLP's own variables.
+  struct OptimalityError {
+    double dual = 0.0;           // largest stationarity residual (scaled variables)
+    double dual_unscaled = 0.0;  // the same in the NLP's variables
+    double primal = 0.0, compl_err = 0.0;
+    double sd = 1.0, sc = 1.0;  // Ipopt's s_d and s_c
+    double scaled() const { return std::max({dual / sd, primal, compl_err / sc}); }
+  };
+  OptimalityError optimalityError(double mu) const;
   void safeguardMultipliers();
   // barrier parameter (ipm_barrier.cpp)
   void updateBarrier();
@@ -92,7 +101,7 @@ class Ipm {
   void stopWatchdog();
   void acceptStep(const Direction& d, double alpha_primal, double alpha_dual);
   bool restoration();
-  void printIteration(char mode) const;
+  void printIteration(char mode, const OptimalityError& e) const;
   double elapsed() const;
 
   Nlp& nlp_;
