@@ -59,6 +59,7 @@ cost:
   velocity_regularization: 0.0
   base_angular_velocity: 1000.0
   last_interval: 1.0e-3
+  landing_steps: 0.0
 solver:
   backend: ipopt
   tol: 1.0e-8
@@ -201,6 +202,7 @@ void readCost(YamlReader& r, JumpConfig& c) {
   k.get("velocity_regularization", c.cost.velocity_regularization, 0.0, 1e6);
   k.get("base_angular_velocity", c.cost.base_angular_velocity, 0.0, 1e8);
   k.get("last_interval", c.cost.last_interval, 0.0, 1e6);
+  k.get("landing_steps", c.cost.landing_steps, 0.0, 1e6);
   k.finish();
 }
 

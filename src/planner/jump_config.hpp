@@ -63,6 +63,9 @@ struct CostConfig {
                                         ///< the dynamics enforced at the knots
   double last_interval = 1.0e-3;        ///< dt_{N_s-1}^2 [1/s^2]: the robot is at rest through the last interval,
                                         ///< so nothing else fixes its length (squat jump; 0 for the half-squat jump)
+  double landing_steps = 0.0;           ///< [1/s] sum of (dt_max - dt_k), k = N_L..N_s-1: a reward for long steps
+                                        ///< after the landing, where the robot comes to rest and little else fixes
+                                        ///< their lengths (off by default: it moves the steps that are not free)
 };
 
 struct JumpConfig {

@@ -272,6 +272,11 @@ void JumpProblem::buildCosts() {
     auto e = std::make_shared<SquaredError<1>>(Eigen::Matrix<double, 1, 1>::Zero(), "last_interval");
     ocp_.addCost("last_interval", e, idx("dt", N_ - 1, 0, 1), C.last_interval);
   }
+  if (C.landing_steps > 0) {  // from the landing on the robot comes to rest: little else fixes those steps' lengths
+    auto e = std::make_shared<AffineSum<1>>(Eigen::Matrix<double, 1, 1>::Constant(-1.0), cfg_.horizon.dt_max,
+                                            "landing_steps");
+    for (int k = NL; k <= N_ - 1; ++k) ocp_.addCost("landing_steps", e, idx("dt", k, 0, 1), C.landing_steps);
+  }
   const Eigen::Vector4d rho0(1, 0, 0, 0);
   if (C.base_orientation > 0) {
     auto e = std::make_shared<SquaredError<4>>(rho0, "base_orientation");

@@ -250,6 +250,25 @@ struct SquaredError : AdElement<SquaredError<N>, N, 1> {
   const char* label_;
 };
 
+/// Inputs: N values. Output: offset + sum coef_a in_a (a cost of constant slope).
+template <int N>
+struct AffineSum : AdElement<AffineSum<N>, N, 1> {
+  AffineSum(const Eigen::Matrix<double, N, 1>& coefficients, double offset, const char* label = "affine_sum")
+      : coef(coefficients), off(offset), label_(label) {}
+  const char* name() const override { return label_; }
+  bool jacobianIsConstant() const override { return true; }
+  bool hessianIsConstant() const override { return true; }
+  template <class S>
+  void compute(const S* in, S* out) const {
+    S s = S(off);
+    for (int a = 0; a < N; ++a) s += S(coef[a]) * in[a];
+    out[0] = s;
+  }
+  Eigen::Matrix<double, N, 1> coef;
+  double off;
+  const char* label_;
+};
+
 /// Inputs: a (N), b (N). Output: sum (b - a)^2 (rates: force and acceleration smoothing).
 template <int N>
 struct SquaredDifference : AdElement<SquaredDifference<N>, 2 * N, 1> {

@@ -210,6 +210,7 @@ TEST(Derivatives, EveryElementMatchesCentralDifferences) {
   checkElement(FrictionConeElement(Eigen::Vector3d(0.1, 0.2, 1.0), 0.5, 1.0, 10.0), 72);
   checkElement(SquaredError<4>(Eigen::Vector4d(1, 0, 0, 0)), 73);
   checkElement(SquaredDifference<3>(), 74);
+  checkElement(AffineSum<3>(Eigen::Vector3d(-1.0, 0.5, 2.0), 0.25), 76);
   checkElement(LegReachElement(), 75);
 }
 
@@ -219,6 +220,7 @@ TEST(Derivatives, AssembledNlpMatchesCentralDifferences) {
     JumpConfig cfg = loadJumpConfig(primitive, "", {"horizon.intervals=6", "horizon.takeoff=1", "horizon.landing=4"});
     cfg.cost.base_orientation = 3.0;
     cfg.cost.velocity_regularization = 0.5;
+    cfg.cost.landing_steps = 0.3;
     const JumpProblem problem(cfg);
     const Ocp& ocp = problem.ocp();
     const int n = ocp.numVariables(), m = ocp.numConstraints();

@@ -33,11 +33,13 @@ TEST(JumpConfig, DefaultsAreValidAndDescribeThePaperSettings) {
   EXPECT_DOUBLE_EQ(c.cost.force_rate, 1.0);
   EXPECT_DOUBLE_EQ(c.cost.acceleration_rate, 1e-3);
   EXPECT_DOUBLE_EQ(c.cost.last_interval, 1e-3);  // ours: the squat jump's robot rests through the last interval
+  EXPECT_DOUBLE_EQ(c.cost.landing_steps, 0.0);   // ours, off: it moves the landing steps that are not free
   EXPECT_NEAR(c.initialWaistHeight(), 0.7188, 1e-9);
   EXPECT_NEAR(c.model.totalMass(), 93.113, 1e-9);
   const JumpConfig h = loadJumpConfig("half-squat-jump", "", {});
   EXPECT_DOUBLE_EQ(h.cost.base_pose, 50.0);
   EXPECT_DOUBLE_EQ(h.cost.last_interval, 0.0);  // its last interval sits at dt_max
+  EXPECT_DOUBLE_EQ(h.cost.landing_steps, 0.0);
   EXPECT_NEAR(h.wallX(), -0.35 - 0.15 - 0.078, 1e-12);
 }
 
@@ -49,6 +51,7 @@ TEST(JumpConfig, AuthorsSettingsLoad) {
   EXPECT_DOUBLE_EQ(c.contact.mu, 0.01);
   EXPECT_NEAR(c.initialWaistHeight(), 0.635, 1e-12);
   EXPECT_DOUBLE_EQ(c.cost.last_interval, 0.0);  // their cost: our additions are off
+  EXPECT_DOUBLE_EQ(c.cost.landing_steps, 0.0);
 }
 
 TEST(JumpConfig, BadValuesNameTheKeyAndRange) {
@@ -71,4 +74,5 @@ TEST(JumpConfig, BadValuesNameTheKeyAndRange) {
   EXPECT_NE(message({"target.height=0.5"}).find("above the initial waist height"), std::string::npos);
   EXPECT_NE(message({"cost.unknown_term=1"}).find("cost.unknown_term"), std::string::npos);
   EXPECT_NE(message({"cost.last_interval=-1"}).find("cost.last_interval"), std::string::npos);
+  EXPECT_NE(message({"cost.landing_steps=-1e-3"}).find("cost.landing_steps"), std::string::npos);
 }
