@@ -46,8 +46,10 @@ std::vector<std::string> neighbours(const std::string& primitive) {
 }
 
 planner::JumpConfig configWith(const std::string& primitive, const std::string& backend,
-                               const std::vector<std::string>& overrides) {
-  planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", overrides);
+                               const std::vector<std::string>& sets, const std::vector<std::string>& overrides) {
+  std::vector<std::string> all = sets;
+  all.insert(all.end(), overrides.begin(), overrides.end());
+  planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", all);
   cfg.solver.backend = backend;
   return cfg;
 }
@@ -56,14 +58,14 @@ planner::JumpConfig configWith(const std::string& primitive, const std::string& 
 
 // Cold solves with both backends, interleaved run by run so that a change of the machine's speed affects both
 // alike. The top-level fields are those of the configured default backend.
-nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
+nlohmann::json benchPrimitive(const std::string& primitive, int repeat, const std::vector<std::string>& sets) {
   std::map<std::string, BackendRuns> runs;
   std::vector<double> setup;
   std::string default_backend;
   for (int r = 0; r < repeat; ++r) {
     for (const std::string& b : kBackends) {
       const auto t0 = std::chrono::steady_clock::now();
-      planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", {});
+      planner::JumpConfig cfg = planner::loadJumpConfig(primitive, "", sets);
       default_backend = cfg.solver.backend;
       cfg.solver.backend = b;
       const planner::JumpProblem problem(cfg);
@@ -92,6 +94,7 @@ nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
                               : 0.0;  // CPU per iteration, as before the backends
   j["setup_wall_s_median"] = median(setup);
   j["repeat"] = repeat;
+  j["set"] = sets;
   j["backend"] = default_backend;
   for (const std::string& b : kBackends) j["backends"][b] = backendJson(runs[b]);
   const double wi = median(runs["ipopt"].wall), wr = median(runs["riccati"].wall);
@@ -100,12 +103,12 @@ nlohmann::json benchPrimitive(const std::string& primitive, int repeat) {
 }
 
 // Warm re-plans of the neighbours, each backend from its own default plan (solved cold once), interleaved.
-nlohmann::json benchWarmReplan(const std::string& primitive, int repeat) {
+nlohmann::json benchWarmReplan(const std::string& primitive, int repeat, const std::vector<std::string>& sets) {
   const std::vector<std::string> near = neighbours(primitive);
   // The default plan of each backend, the source of its warm starts.
   std::map<std::string, data::Primitive> source;
   for (const std::string& b : kBackends) {
-    const planner::JumpProblem p(configWith(primitive, b, {}));
+    const planner::JumpProblem p(configWith(primitive, b, sets, {}));
     source.emplace(b, p.toPrimitive(p.solve(false)));
   }
   struct Runs {
@@ -119,7 +122,7 @@ nlohmann::json benchWarmReplan(const std::string& primitive, int repeat) {
   for (int r = 0; r < repeat; ++r) {
     for (const std::string& n : near) {
       for (const std::string& b : kBackends) {
-        const planner::JumpProblem p(configWith(primitive, b, {n}));
+        const planner::JumpProblem p(configWith(primitive, b, sets, {n}));
         const planner::WarmStartPoint warm = p.warmStart(source.at(b), "the default " + primitive + " plan");
         const auto t0 = std::chrono::steady_clock::now();
         const planner::SolveResult res = p.solve(false, warm);

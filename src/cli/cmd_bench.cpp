@@ -1,5 +1,6 @@
-// centaur bench planner [--repeat N] [--json]
-// Cold solves of both jump primitives with the embedded defaults and both OCP backends (interleaved); reports the
+// centaur bench planner [--repeat N] [--set KEY=VALUE]... [--json]
+// Cold solves of both jump primitives with the embedded defaults (and the --set overrides, as `centaur plan`'s, for
+// both jumps) and both OCP backends (interleaved); reports the
 // median wall and CPU solve time, iterations, time per iteration, derivative and factorization time; then warm
 // re-plans of two neighbouring problems per jump from the default plan (cli/bench_planner.hpp). With --json the
 // last stdout line is one JSON object.
@@ -25,6 +26,7 @@
 #include "cli/command.hpp"
 #include "common/error.hpp"
 #include "common/stats.hpp"
+#include "planner/jump_config.hpp"
 #include "controller/whole_body_controller.hpp"
 #include "sim/compare_runner.hpp"
 #include "sim/mujoco_robot.hpp"
@@ -43,6 +45,7 @@ struct BenchArgs {
   int realtime_priority = 0;         // middleware: SCHED_FIFO priority of both nodes (0 = normal scheduling)
   std::vector<std::string> jumps = {"squat-jump", "half-squat-jump"};
   std::vector<std::string> modes = {"none", "raibert", "angmom", "ocp"};
+  std::vector<std::string> sets;  // planner: overrides of both jumps' configuration
 };
 
 // Times every tick() (and the HQP part of it) of the wrapped controller into preallocated buffers.
@@ -167,9 +170,11 @@ nlohmann::json benchJump(const BenchArgs& a) {
 int runBench(const BenchArgs& a) {
   nlohmann::json out;
   if (a.target == "planner") {
+    // Bad overrides are refused before the first solve (loadJumpConfig names the key and its range).
+    for (const std::string p : {"squat-jump", "half-squat-jump"}) planner::loadJumpConfig(p, "", a.sets);
     for (const std::string p : {"squat-jump", "half-squat-jump"}) {
       std::fprintf(stderr, "bench planner %s: %d cold solves ...\n", p.c_str(), a.repeat);
-      out["planner"][p] = benchPrimitive(p, a.repeat);
+      out["planner"][p] = benchPrimitive(p, a.repeat, a.sets);
       const auto& j = out["planner"][p];
       for (const auto& [b, jb] : j["backends"].items()) {
         std::fprintf(stderr, "  %-16s %-8s %s, %d iterations, median solve %.3f s wall / %.3f s CPU, %.1f ms per iteration",
@@ -188,7 +193,7 @@ int runBench(const BenchArgs& a) {
                    j["riccati_speedup_wall"].get<double>());
       std::fprintf(stderr, "bench planner %s: warm re-plans of neighbours from the default plan, %d each ...\n",
                    p.c_str(), a.repeat);
-      out["planner"][p]["warm_replan"] = benchWarmReplan(p, a.repeat);
+      out["planner"][p]["warm_replan"] = benchWarmReplan(p, a.repeat, a.sets);
       const auto& w = out["planner"][p]["warm_replan"];
       for (const auto& [b, jb] : w["backends"].items()) {
         for (const std::string n : w["neighbours"]) {
@@ -264,6 +269,9 @@ const Registrar kBench{{"bench",
                               ->check(CLI::IsMember({"squat-jump", "half-squat-jump"}));
                           sub.add_option("--modes", a->modes, "jump: the stabilizer modes")
                               ->check(CLI::IsMember({"none", "raibert", "angmom", "ocp"}));
+                          sub.add_option("--set", a->sets,
+                                         "planner: KEY=VALUE override of both jumps' configuration, as for `plan` "
+                                         "(repeatable; e.g. cost.landing_steps=1e-3)");
                           sub.add_flag("--json", a->json, "print a JSON object as the last line of stdout");
                           return [a]() { return runBench(*a); };
                         }}};

@@ -193,6 +193,8 @@ TEST(BadInputCli, NonFiniteNumbersAndUnknownNamesAreRefused) {
        {dir.file("r.h5")}},
       {"report --rate nan", "report --primitive " + shq(dir.file("none.h5")) + " --rate nan", {"--rate"}},
       {"control --start-after nan", "control squat-jump --start-after nan", {"--start-after"}},
+      {"bench planner unknown key", "bench planner --set cost.no_such_weight=1", {"cost.no_such_weight"}},
+      {"bench planner nan", "bench planner --set cost.landing_steps=.nan", {"cost.landing_steps"}},
   });
 }
 
