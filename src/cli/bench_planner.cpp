@@ -56,6 +56,10 @@ planner::JumpConfig configWith(const std::string& primitive, const std::string& 
 
 }  // namespace
 
+void checkPlannerOverrides(const std::vector<std::string>& sets) {
+  for (const std::string p : {"squat-jump", "half-squat-jump"}) planner::loadJumpConfig(p, "", sets);
+}
+
 // Cold solves with both backends, interleaved run by run so that a change of the machine's speed affects both
 // alike. The top-level fields are those of the configured default backend.
 nlohmann::json benchPrimitive(const std::string& primitive, int repeat, const std::vector<std::string>& sets) {

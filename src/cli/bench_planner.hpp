@@ -13,6 +13,8 @@
 
 namespace centaur::cli {
 
+/// Throws InputError (naming the key and its range) if `sets` does not apply to both jumps.
+void checkPlannerOverrides(const std::vector<std::string>& sets);
 nlohmann::json benchPrimitive(const std::string& primitive, int repeat, const std::vector<std::string>& sets = {});
 nlohmann::json benchWarmReplan(const std::string& primitive, int repeat, const std::vector<std::string>& sets = {});
 

@@ -26,7 +26,6 @@
 #include "cli/command.hpp"
 #include "common/error.hpp"
 #include "common/stats.hpp"
-#include "planner/jump_config.hpp"
 #include "controller/whole_body_controller.hpp"
 #include "sim/compare_runner.hpp"
 #include "sim/mujoco_robot.hpp"
@@ -170,8 +169,7 @@ nlohmann::json benchJump(const BenchArgs& a) {
 int runBench(const BenchArgs& a) {
   nlohmann::json out;
   if (a.target == "planner") {
-    // Bad overrides are refused before the first solve (loadJumpConfig names the key and its range).
-    for (const std::string p : {"squat-jump", "half-squat-jump"}) planner::loadJumpConfig(p, "", a.sets);
+    checkPlannerOverrides(a.sets);  // before the first solve
     for (const std::string p : {"squat-jump", "half-squat-jump"}) {
       std::fprintf(stderr, "bench planner %s: %d cold solves ...\n", p.c_str(), a.repeat);
       out["planner"][p] = benchPrimitive(p, a.repeat, a.sets);

@@ -5,6 +5,7 @@
 // takes the last of them, which the default plan leaves just inside its bound, onto the bound.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
