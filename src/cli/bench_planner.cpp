@@ -28,6 +28,7 @@ nlohmann::json backendJson(const BackendRuns& r) {
   j["iterations"] = r.iterations;
   j["cost"] = r.cost;
   j["solve_wall_s_median"] = median(r.wall);
+  j["solve_wall_s"] = r.wall;  // every run, in the order they ran (the spread the median hides)
   j["solve_cpu_s_median"] = median(r.cpu);
   j["ms_per_iteration"] = r.iterations > 0 ? 1e3 * median(r.wall) / r.iterations : 0.0;
   j["derivative_wall_s_median"] = median(r.derivatives);
@@ -154,6 +155,7 @@ nlohmann::json benchWarmReplan(const std::string& primitive, int repeat, const s
       jn["iterations"] = e.iterations;
       jn["cost"] = e.cost;
       jn["solve_wall_s_median"] = median(e.wall);
+      jn["solve_wall_s"] = e.wall;
       worst = std::max(worst, median(e.wall));
     }
     j["backends"][b]["solve_wall_s_median_max"] = worst;  // the slowest neighbour
