@@ -2,8 +2,10 @@
 // evaluations Ipopt asks for (constraint Jacobian, Lagrangian Hessian) and of one element's derivatives.
 //   ./build/bench/bench_planner --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // "Cold": the OCP is built from the configuration (structure analysis included) and solved from the default
-// initial guess, nothing is reused between repetitions. Counters: iterations, ipopt_s (Ipopt's own wall time),
-// ms_per_iter (CPU per Ipopt iteration, build excluded), solved (1/0).
+// initial guess, nothing is reused between repetitions. Counters: iterations, ipopt_s (Ipopt's own wall time) or
+// riccati_s (the structured backend's, *ColdRiccati), ms_per_iter (that time per iteration, build excluded), solved
+// (1/0). The *ColdRiccati cases report real time (the backend runs on two threads); with
+// --benchmark_repetitions they give the spread of single solves that `centaur bench planner` summarizes.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -22,22 +24,22 @@ using namespace centaur;
 using namespace centaur::planner;
 using namespace centaur::data;
 
-void solveCold(benchmark::State& state, const std::string& primitive) {
-  const JumpConfig cfg = loadJumpConfig(primitive, "", {});
+void solveCold(benchmark::State& state, const std::string& primitive, const std::string& backend = "ipopt") {
+  const JumpConfig cfg = loadJumpConfig(primitive, "", {"solver.backend=" + backend});
   int iterations = 0;
-  double ipopt_s = 0.0;
+  double solve_s = 0.0;  // the solve's own wall time
   bool solved = true;
   for (auto _ : state) {
     const JumpProblem problem(cfg);
     const SolveResult r = problem.solve(false);
     iterations = r.info.iterations;
-    ipopt_s = r.info.solve_time_s;
+    solve_s = r.info.solve_time_s;
     solved = solved && r.info.solved();
     benchmark::DoNotOptimize(r.z.data());
   }
   state.counters["iterations"] = iterations;
-  state.counters["ipopt_s"] = ipopt_s;
-  state.counters["ms_per_iter"] = 1e3 * ipopt_s / std::max(1, iterations);
+  state.counters[backend + "_s"] = solve_s;
+  state.counters["ms_per_iter"] = 1e3 * solve_s / std::max(1, iterations);
   state.counters["solved"] = solved ? 1 : 0;
 }
 
@@ -45,6 +47,10 @@ void BM_SquatJumpCold(benchmark::State& state) { solveCold(state, "squat-jump");
 void BM_HalfSquatJumpCold(benchmark::State& state) { solveCold(state, "half-squat-jump"); }
 BENCHMARK(BM_SquatJumpCold)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HalfSquatJumpCold)->Unit(benchmark::kMillisecond);
+void BM_SquatJumpColdRiccati(benchmark::State& state) { solveCold(state, "squat-jump", "riccati"); }
+void BM_HalfSquatJumpColdRiccati(benchmark::State& state) { solveCold(state, "half-squat-jump", "riccati"); }
+BENCHMARK(BM_SquatJumpColdRiccati)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HalfSquatJumpColdRiccati)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_BuildSquatJump(benchmark::State& state) {
   const JumpConfig cfg = loadJumpConfig("squat-jump", "", {});
