@@ -1,6 +1,7 @@
-// `centaur bench planner`: both backends solve both jumps cold (5 times by default) and re-plan their neighbours warm,
-// and the last stdout line is a JSON object whose summaries agree with the solves it lists. Timings are only checked for consistency
-// (every run listed, the medians and the speed-up computed from them), never against a budget.
+// `centaur bench planner`: both backends solve both jumps cold (5 times by default) and re-plan their neighbours
+// warm, and the last stdout line is a JSON object whose summaries agree with the solves it lists. Timings are only
+// checked for consistency (every run listed, the medians and the speed-up computed from them), never against a
+// budget.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/stats.hpp"
 #include "support/cli_run.hpp"
 
 namespace {
@@ -16,19 +18,12 @@ namespace {
 using centaur_test::CliRun;
 using centaur_test::run;
 
-// The median of two or more solve times, as the benchmark defines it (the mean of the middle two for an even count).
-double medianOf(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // `runs` lists `repeat` positive wall times whose median is the entry's solve_wall_s_median.
 void expectRunsAndMedian(const nlohmann::json& entry, int repeat, const std::string& what) {
   const std::vector<double> runs = entry.at("solve_wall_s").get<std::vector<double>>();
   ASSERT_EQ(static_cast<int>(runs.size()), repeat) << what;
   for (double t : runs) EXPECT_GT(t, 0.0) << what;
-  EXPECT_DOUBLE_EQ(entry.at("solve_wall_s_median").get<double>(), medianOf(runs)) << what;
+  EXPECT_DOUBLE_EQ(entry.at("solve_wall_s_median").get<double>(), centaur::median(runs)) << what;
 }
 
 }  // namespace
