@@ -78,3 +78,33 @@ TEST(WorkerThread, DestructionWhilePollingOrBlockedReturns) {
     EXPECT_EQ(x, 7);
   }  // destroyed right after a job, its worker polling again
 }
+
+TEST(WorkerThread, InlineWorkerLeavesBothPartsToTheCallingThread) {
+  WorkerThread w;
+  const auto caller = std::this_thread::get_id();
+  std::thread::id mine, other;
+  w.setInline(true);
+  runAlongside(&w, [&] { mine = std::this_thread::get_id(); }, [&] { other = std::this_thread::get_id(); });
+  EXPECT_EQ(mine, caller);
+  EXPECT_EQ(other, caller);
+  w.setInline(false);
+  runAlongside(&w, [&] { mine = std::this_thread::get_id(); }, [&] { other = std::this_thread::get_id(); });
+  EXPECT_EQ(mine, caller);
+  EXPECT_NE(other, caller);
+}
+
+TEST(WorkerThread, SectionsFollowTheChooserAndReportTheirTime) {
+  // A worker that falls behind (a job delay of 2 ms, injected) beside a caller whose own part is short: in auto mode
+  // the sections soon leave the work to the caller, who finishes each in far less than the delay.
+  WorkerThread w;
+  w.setJobDelay(2ms);
+  w.chooser().setMode(centaur::common::ParallelChooser::Mode::kAuto);
+  int other_ran = 0;
+  for (int i = 0; i < 40; ++i) {
+    const centaur::common::ParallelSection section(&w, centaur::common::kSectionDerivatives);
+    runAlongside(&w, [] { std::this_thread::sleep_for(100us); }, [&] { ++other_ran; });
+  }
+  EXPECT_EQ(other_ran, 40);  // every job ran once, either way
+  EXPECT_GE(w.chooser().calls(centaur::common::kSectionDerivatives, false), 30);
+  EXPECT_LE(w.chooser().calls(centaur::common::kSectionDerivatives, true), 10);
+}
