@@ -1,5 +1,6 @@
 #include "ocp_solver/riccati.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <thread>
 
@@ -232,13 +233,19 @@ void RiccatiSolver::startRowParts(const std::vector<StageQp>& qp, const std::fun
 // the stage's blocks but not taken H yet (it would wait for the row part otherwise), then waits for both.
 void RiccatiSolver::awaitStage(int k, const std::function<void(int, int)>& fill_cost) {
   Parallel& pl = *par_;
+  // Yield until `done`; the time it took counts as waiting for the worker (ParallelSection).
+  const auto until = [&pl](const auto& done) {
+    if (done()) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    while (!done()) std::this_thread::yield();
+    pl.worker.addWaited(std::chrono::steady_clock::now() - t0);
+  };
   if (fill_cost) {
-    while (pl.filled.load(std::memory_order_acquire) > k) std::this_thread::yield();
+    until([&] { return pl.filled.load(std::memory_order_acquire) <= k; });
     pl.claimCostFill(fill_cost, k, 0);
   }
-  while (pl.rows_done.load(std::memory_order_acquire) > k) std::this_thread::yield();
-  if (fill_cost)
-    while (pl.cost_filled[k].load(std::memory_order_acquire) != 2) std::this_thread::yield();
+  until([&] { return pl.rows_done.load(std::memory_order_acquire) <= k; });
+  if (fill_cost) until([&] { return pl.cost_filled[k].load(std::memory_order_acquire) == 2; });
 }
 
 RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
@@ -253,10 +260,11 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
   inertia_ = Inertia{};
   failed_stage_ = -1;
   factored_ = false;
-  if (par_) startRowParts(qp, before_stage, fill_cost);
+  const bool par = parallel();
+  if (par) startRowParts(qp, before_stage, fill_cost);
   bool ok = true;
   for (int k = N; k >= 0 && ok; --k) {
-    if (par_) {
+    if (par) {
       awaitStage(k, fill_cost);
     } else {
       if (before_stage) before_stage(k);
@@ -267,7 +275,7 @@ RiccatiSolver::Status RiccatiSolver::factor(const std::vector<StageQp>& qp,
     ok = stageCost(qp, k);
     if (!ok) failed_stage_ = k;
   }
-  if (par_) {
+  if (par) {
     par_->stop.store(true, std::memory_order_relaxed);
     par_->worker.wait();
   }

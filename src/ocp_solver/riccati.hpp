@@ -85,7 +85,10 @@ class RiccatiSolver {
   /// The same on a worker thread shared with other work of the caller (which must not use it while this solver
   /// does; it must outlive the solver or a later setParallel).
   void setParallel(common::WorkerThread* shared);
-  bool parallel() const { return par_ != nullptr; }
+  /// Whether the next factor() and runPair() use the second thread: set, and the worker not inline.
+  bool parallel() const { return par_ != nullptr && !par_->worker.isInline(); }
+  /// The second thread (null unless setParallel), e.g. for a ParallelSection around factor() or runPair().
+  common::WorkerThread* worker() const { return par_ ? &par_->worker : nullptr; }
   /// Run `mine` on the calling thread and `other` on the second one (when parallel; otherwise one after the
   /// other), and return when both have finished. For work between factorizations, e.g. two solves.
   void runPair(const std::function<void()>& mine, const std::function<void()>& other) const;

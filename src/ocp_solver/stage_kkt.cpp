@@ -327,7 +327,13 @@ KktStatus StageKktSolver::run(bool same_rows) {
     if (!rows_filled_[k]) fillRows(k);
   };
   const auto fill_cost = [this](int k, int thread) { fillCost(k, thread); };
-  switch (riccati_.factor(qp_, fill_rows, same_rows, fill_cost)) {
+  // Timed per stage whose cost part ran (a failed trial stops early), first trials and retries apart.
+  common::ParallelSection section(riccati_.worker(),
+                                  same_rows ? common::kSectionRefactor : common::kSectionFactor);
+  const RiccatiSolver::Status status = riccati_.factor(qp_, fill_rows, same_rows, fill_cost);
+  const int failed = riccati_.failedStage();
+  section.setWork(failed < 0 || failed > N_ ? N_ + 2 : N_ + 1 - failed);
+  switch (status) {
     case RiccatiSolver::Status::kOk: return KktStatus::kOk;
     case RiccatiSolver::Status::kSingular: return KktStatus::kSingular;
     default: return KktStatus::kWrongInertia;

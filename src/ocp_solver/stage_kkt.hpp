@@ -61,7 +61,9 @@ class StageKktSolver final : public KktSolver {
   /// cost parts (RiccatiSolver::setParallel): the scattering of the sparse values and the rank splits of the rows
   /// then overlap the reduced Hessians. The results are bit-identical to the sequential ones.
   void setPipelined(bool on);
-  /// Pipelined on a worker thread shared with the caller's other work (null: not pipelined).
+  /// Pipelined on a worker thread shared with the caller's other work (null: not pipelined). Each factorization and
+  /// each pair of solves runs on it or on the calling thread alone as the worker's chooser decides
+  /// (common::ParallelSection; the results are the same bits either way).
   void setPipelined(common::WorkerThread* shared);
   /// Relative residual of the last solve (after refinement; of b after solveTwo).
   double lastResidual() const { return last_residual_; }

@@ -69,6 +69,7 @@ void StageKktSolver::solve(const Eigen::VectorXd& rx, const Eigen::VectorXd& rc,
 void StageKktSolver::solveTwo(const KktSolve& a, const KktSolve& b) {
   if (kmax_ < 0.0) kmax_ = largestEntry();
   SolveWork &wa = work_[0], &wb = work_[1];
+  const common::ParallelSection section(riccati_.worker(), common::kSectionSolves);
   if (riccati_.parallel()) {
     riccati_.runPair([&] { solveWith(wa, a.rx, a.rc, a.dx, a.dy); }, [&] { solveWith(wb, b.rx, b.rc, b.dx, b.dy); });
     last_residual_ = wb.residual;

@@ -39,6 +39,7 @@ solver:
   mu_strategy: adaptive
   user_scaling: true
   print_level: 0
+  threads: auto
 )";
 
 

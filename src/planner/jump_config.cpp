@@ -70,6 +70,7 @@ solver:
   mu_strategy: adaptive
   user_scaling: true
   print_level: 0
+  threads: auto
 )";
 
 const char* kHalfSquatOverrides = R"(primitive: half-squat-jump

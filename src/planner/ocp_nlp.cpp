@@ -16,7 +16,10 @@ OcpNlp::OcpNlp(const Ocp& ocp, bool user_scaling, const Eigen::VectorXd* x0, int
   // The same split with one thread (the second list evaluated after the first): the derivatives, and so the
   // iterates and the primitive, do not depend on the number of cores.
   splitTerms();
-  if (threads >= 2) worker_ = std::make_unique<common::WorkerThread>();
+  if (threads >= 2) {
+    worker_ = std::make_unique<common::WorkerThread>();
+    worker_->chooser().setMode(common::ParallelChooser::Mode::kAuto);
+  }
   jac1_.resize(ocp.jacobianNonzeros());
   hess1_.resize(ocp.hessianNonzeros());
 }
@@ -142,7 +145,10 @@ bool OcpNlp::derivatives(const Eigen::VectorXd& x, double obj_factor, const Eige
     std::fill(hess, hess + nh, 0.0);
     ocp_.addDerivatives(x.data(), obj_factor, y.data(), caller_terms_, scratch_[0], grad.data(), jac, hess);
   };
-  common::runAlongside(worker_.get(), first, second);
+  {
+    const common::ParallelSection section(worker_.get(), common::kSectionDerivatives);
+    common::runAlongside(worker_.get(), first, second);
+  }
   grad += grad1_;
   for (int k = 0; k < nj; ++k) jac[k] += jac1_[k];
   for (int k = 0; k < nh; ++k) hess[k] += hess1_[k];

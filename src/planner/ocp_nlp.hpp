@@ -15,7 +15,8 @@ class OcpNlp final : public ocp_solver::Nlp {
  public:
   /// x0: the initial point (the OCP's guess if null); user_scaling: use Ocp::scale() as variable scale;
   /// threads: 1 or 2. The terms are split into two lists by estimated work; with 2 threads the second list runs
-  /// on a worker thread, with 1 after the first. The derivatives are the same bit for bit either way.
+  /// on a worker thread, with 1 after the first. The derivatives are the same bit for bit either way. The worker's
+  /// chooser starts in auto mode (common/parallel_chooser.hpp): each call runs on both threads only while that pays.
   OcpNlp(const Ocp& ocp, bool user_scaling, const Eigen::VectorXd* x0, int threads = 1);
 
   const ocp_solver::SparsePattern& pattern() const override { return pattern_; }

@@ -10,8 +10,11 @@
 namespace centaur::planner {
 
 SolveResult solveWithRiccati(const Ocp& ocp, const SolverSettings& s, const WarmStartPoint* start) {
-  // Derivatives on both cores of the planning machine (when there are two).
-  OcpNlp nlp(ocp, s.user_scaling, start ? &start->z : nullptr, std::thread::hardware_concurrency() >= 2 ? 2 : 1);
+  // Derivatives and factorizations on both cores of the planning machine (when there are two and solver.threads
+  // allows): always with "2", with "auto" while the calling thread hardly waits for the second one or it pays.
+  const int threads = s.threads != "1" && std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+  OcpNlp nlp(ocp, s.user_scaling, start ? &start->z : nullptr, threads);
+  if (nlp.worker() && s.threads == "2") nlp.worker()->chooser().setMode(common::ParallelChooser::Mode::kParallel);
   SolveResult result;
   result.z = nlp.initialPoint();
   result.stats.backend = "riccati";
@@ -22,7 +25,7 @@ SolveResult solveWithRiccati(const Ocp& ocp, const SolverSettings& s, const Warm
   } catch (const ocp_solver::StructureError& e) {
     throw RuntimeError(std::string("solver.backend riccati: ") + e.what() + " (use solver.backend: ipopt)");
   }
-  kkt->setPipelined(nlp.worker());  // one second thread for both: never two threads polling for one core
+  if (nlp.worker()) kkt->setPipelined(nlp.worker());  // one second thread for both: never two polling for one core
   ocp_solver::IpmOptions o;
   o.tol = s.tol;
   o.constr_viol_tol = s.constr_viol_tol;

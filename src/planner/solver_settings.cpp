@@ -12,6 +12,7 @@ void readSolverSettings(YamlReader& s, SolverSettings& c) {
   s.get("mu_strategy", c.mu_strategy, {"adaptive", "monotone"});
   s.get("user_scaling", c.user_scaling);
   s.get("print_level", c.print_level, 0, 12);
+  s.get("threads", c.threads, {"auto", "1", "2"});
   if (c.hessian == "limited-memory" && c.backend != "ipopt") {
     s.fail("hessian", "limited-memory needs solver.backend: ipopt (the riccati backend, also tried first by auto, "
                       "uses the exact Hessian)");

@@ -21,6 +21,9 @@ struct SolverSettings {
   std::string mu_strategy = "adaptive";  ///< monotone | adaptive
   bool user_scaling = true;       ///< scale variables by their typical magnitude (Ocp::setScale)
   int print_level = 0;            ///< Ipopt's own output (0 = silent; ipopt only)
+  /// riccati: "2" derivatives and factorizations on two threads, "1" on the calling one, "auto" on two while that
+  /// pays (common/parallel_chooser.hpp). The solve is the same bit for bit.
+  std::string threads = "auto";
   bool progress = false;          ///< one line per iteration on stderr
 };
 

@@ -67,20 +67,33 @@ void compareWithDense(const Ocp& ocp, unsigned seed, double dxv = 50.0, double l
   EXPECT_EQ(px, sx);
   EXPECT_EQ(py, sy);
   // Pipelined on the derivatives' worker thread (one second thread for both, as the planner runs), with derivative
-  // evaluations on that thread before and between the factorizations: the same bits again.
+  // evaluations on that thread before and between the factorizations: the same bits again, whichever way each
+  // section runs (the worker's chooser in auto mode, as the planner runs it; then every section inline, then on both
+  // threads), and the same derivatives each time.
   OcpNlp nlp2(ocp, true, nullptr, 2);
   ASSERT_NE(nlp2.worker(), nullptr);
+  EXPECT_EQ(nlp2.worker()->chooser().mode(), common::ParallelChooser::Mode::kAuto);
   ocp_solver::StageKktSolver q(nlp2.pattern(), nlp2.stageLayout(), nlp2.fixedVariables(), eq);
   q.setPipelined(nlp2.worker());
-  Eigen::VectorXd g2;
-  std::vector<double> jac2(jac.size()), hess2(hess.size());
-  for (int round = 0; round < 2; ++round) {
+  Eigen::VectorXd g2, g2_first;
+  std::vector<double> jac2(jac.size()), hess2(hess.size()), jac2_first, hess2_first;
+  for (int round = 0; round < 8; ++round) {
+    if (round == 4) nlp2.worker()->chooser().setMode(common::ParallelChooser::Mode::kInline);
+    if (round == 6) nlp2.worker()->chooser().setMode(common::ParallelChooser::Mode::kParallel);
     ASSERT_TRUE(nlp2.derivatives(z, 0.7, lambda, g2, jac2.data(), hess2.data()));
+    if (round == 0) g2_first = g2, jac2_first = jac2, hess2_first = hess2;
+    EXPECT_EQ(g2, g2_first);
+    EXPECT_EQ(jac2, jac2_first);
+    EXPECT_EQ(hess2, hess2_first);
     ASSERT_EQ(q.factor(hess.data(), jac.data(), dx, dc), ocp_solver::KktStatus::kOk);
     Eigen::VectorXd qx, qy;
     q.solve(rx, rc, qx, qy);
     EXPECT_EQ(qx, sx);
     EXPECT_EQ(qy, sy);
+  }
+  for (bool p : {true, false}) {  // each kind of section ran both ways
+    EXPECT_GT(nlp2.worker()->chooser().calls(common::kSectionDerivatives, p), 0);
+    EXPECT_GT(nlp2.worker()->chooser().calls(common::kSectionFactor, p), 0);
   }
   // Two right-hand sides in one pass over the factors (the interior point's affine and centring steps): the same
   // bits as one after the other.
@@ -94,6 +107,16 @@ void compareWithDense(const Ocp& ocp, unsigned seed, double dxv = 50.0, double l
   EXPECT_EQ(bx, sx2);
   EXPECT_EQ(by, sy2);
   EXPECT_NE(bx, sx);
+  // The same pair on the planner's shared worker, inline and on both threads.
+  for (const auto mode : {common::ParallelChooser::Mode::kInline, common::ParallelChooser::Mode::kParallel}) {
+    nlp2.worker()->chooser().setMode(mode);
+    Eigen::VectorXd cx, cy, ex, ey;
+    q.solveTwo({rx, rc, cx, cy}, {rx2, rc2, ex, ey});
+    EXPECT_EQ(cx, sx);
+    EXPECT_EQ(cy, sy);
+    EXPECT_EQ(ex, sx2);
+    EXPECT_EQ(ey, sy2);
+  }
 }
 
 std::vector<std::string> shortHorizon() {
