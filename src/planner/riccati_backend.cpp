@@ -25,7 +25,7 @@ SolveResult solveWithRiccati(const Ocp& ocp, const SolverSettings& s, const Warm
   } catch (const ocp_solver::StructureError& e) {
     throw RuntimeError(std::string("solver.backend riccati: ") + e.what() + " (use solver.backend: ipopt)");
   }
-  if (nlp.worker()) kkt->setPipelined(nlp.worker());  // one second thread for both: never two polling for one core
+  kkt->setPipelined(nlp.worker());  // one second thread for both (none with one); never two polling for one core
   ocp_solver::IpmOptions o;
   o.tol = s.tol;
   o.constr_viol_tol = s.constr_viol_tol;
