@@ -7,10 +7,15 @@
 namespace centaur {
 
 void BaseEstimator::init(const std::string& mjcf_path, const BaseEstimatorParams& params) {
+  init(loadRobotModel(mjcf_path), params);
+}
+
+void BaseEstimator::init(std::shared_ptr<const RobotModelDescription> model, const BaseEstimatorParams& params) {
   if (!(params.wheel_radius > 0.0 && params.wheel_radius <= 0.5))
     throw InputError("base estimator: wheel_radius must be in (0, 0.5] m");
   params_ = params;
-  model_ = std::make_unique<RobotModel>(mjcf_path);
+  model_ = std::make_unique<RobotModel>(std::move(model));
+  const std::string& mjcf_path = model_->path();
   for (int k = 0; k < kWheels; ++k) {
     const std::string wheel = "wheel_" + std::to_string(k + 1), centre = "wheel_centre_" + std::to_string(k + 1);
     f_wheel_[k] = model_->frameId(wheel);

@@ -23,7 +23,7 @@
 //                that the stance wheels' contact points are on average at z = 0 (flat ground).
 // Conventions: RobotModel's (q = [w_p_base, w_quat_base (w, x, y, z), joints], v = [w_v_base, b_omega_base,
 // qd]). Wheel order: wheel_1 front-left, wheel_2 front-right, wheel_3 rear-left, wheel_4 rear-right.
-// Model/Data split: init() allocates (it builds a private RobotModel from the MJCF); update() never
+// Model/Data split: init() allocates (a private RobotModel workspace, on the caller's description or the MJCF); update() never
 // allocates nor throws.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -47,6 +47,8 @@ class BaseEstimator {
   /// Builds the private kinematic model from the MJCF (needs bodies pelvis, wheel_1..4 and sites
   /// wheel_centre_1..4); throws InputError naming the file. Allocates.
   void init(const std::string& mjcf_path, const BaseEstimatorParams& params = BaseEstimatorParams());
+  /// The same on a model description the caller shares (no parse).
+  void init(std::shared_ptr<const RobotModelDescription> model, const BaseEstimatorParams& params = BaseEstimatorParams());
   /// Sets the base position and linear velocity (W) at the next update() (e.g. the known start pose).
   void reset(const Eigen::Vector3d& w_p_base, const Eigen::Vector3d& w_v_base = Eigen::Vector3d::Zero());
   /// One estimation step with the measurement and the stance flags (wheel k-1 in stance). No allocation.

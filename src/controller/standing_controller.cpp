@@ -107,7 +107,7 @@ StandingController::StandingController(const std::string& mjcf_path, const Stand
   if (params_.use_base_estimator) {
     BaseEstimatorParams ep;
     ep.wheel_radius = params_.wheel_radius;
-    estimator_.init(mjcf_path, ep);
+    estimator_.init(model_->description(), ep);
   }
   for (int k = 0; k < 4; ++k) {
     w_inv_.segment<3>(3 * k) << 1.0 / params_.tangential_weight, 1.0 / params_.tangential_weight, 1.0;

@@ -37,8 +37,8 @@ std::shared_ptr<T> findTask(const LoadedStack& s, const std::string& name) {
 
 WholeBodyController::WholeBodyController(const std::string& mjcf_path, const WholeBodyParams& params)
     : params_(params),
-      model_meas_(std::make_unique<RobotModel>(mjcf_path)),
-      model_ik_(std::make_unique<RobotModel>(mjcf_path)) {
+      model_meas_(std::make_unique<RobotModel>(mjcf_path)),  // the one parse; the other models are workspaces on it
+      model_ik_(std::make_unique<RobotModel>(model_meas_->description())) {
   if (!(params_.dt > 0.0 && params_.dt <= 0.01)) throw InputError("whole-body controller: dt must be in (0, 0.01] s");
   if (!(params_.safe_kd_scale >= 1.0 && params_.safe_kd_scale <= 100.0))
     throw InputError("whole-body controller: safe_kd_scale must be in [1, 100]");
@@ -47,7 +47,7 @@ WholeBodyController::WholeBodyController(const std::string& mjcf_path, const Who
   n_ = model_meas_->numJoints();
   nq_ = model_meas_->nq();
   nv_ = model_meas_->nv();
-  estimator_.init(mjcf_path, params_.estimator);
+  estimator_.init(model_meas_->description(), params_.estimator);
   detector_.init(*model_meas_, params_.detector);
   force_.init(*model_meas_, params_.force);
   registerRobotTasks(registry_, *model_ik_, params_.dt);

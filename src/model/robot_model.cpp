@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "common/error.hpp"
 #include "model/mjcf_load.hpp"
@@ -42,9 +43,28 @@ using Vec3C = Eigen::Map<const Eigen::Vector3d>;
 
 }  // namespace
 
-struct RobotModel::Impl {
+// The const part: MuJoCo's model and what is read from it once. Never written after loadRobotModel().
+struct RobotModelDescription {
   std::string path;
   mjModel* m = nullptr;
+  int n = 0, nq = 0, nv = 0;
+  int base_body = -1;
+  double mass = 0.0;
+  Eigen::Vector3d grav = Eigen::Vector3d::Zero();
+  std::vector<std::string> joint_names;
+  std::vector<std::string> frame_names;  // bodies, then sites
+  JointLimits limits;
+  Eigen::VectorXd home;
+  ~RobotModelDescription() {
+    if (m) mj_deleteModel(m);
+  }
+};
+
+struct RobotModel::Impl {
+  std::shared_ptr<const RobotModelDescription> desc;
+  // copies of the description's facts, for the queries (made once, at construction)
+  std::string path;
+  const mjModel* m = nullptr;
   mjData* d = nullptr;
   int n = 0, nq = 0, nv = 0;
   int base_body = -1;
@@ -67,7 +87,6 @@ struct RobotModel::Impl {
 
   ~Impl() {
     if (d) mj_deleteData(d);
-    if (m) mj_deleteModel(m);
   }
 
   int bodyOf(int frame) const { return frame < m->nbody ? frame : m->site_bodyid[frame - m->nbody]; }
@@ -106,8 +125,9 @@ struct RobotModel::Impl {
   }
 };
 
-RobotModel::RobotModel(const std::string& mjcf_path) : impl_(std::make_unique<Impl>()) {
-  Impl& I = *impl_;
+std::shared_ptr<const RobotModelDescription> loadRobotModel(const std::string& mjcf_path) {
+  auto desc = std::make_shared<RobotModelDescription>();
+  RobotModelDescription& I = *desc;
   I.path = mjcf_path;
   I.m = loadMjcf(mjcf_path, /*discard_visual=*/true);  // the controller never draws: no visual geoms to pose
   const mjModel* m = I.m;
@@ -168,7 +188,26 @@ RobotModel::RobotModel(const std::string& mjcf_path) : impl_(std::make_unique<Im
   I.home.setZero(I.n);
   const int key = mj_name2id(m, mjOBJ_KEY, "home");
   if (key >= 0) I.home = Eigen::Map<const Eigen::VectorXd>(m->key_qpos + m->nq * key + 7, I.n);
+  return desc;
+}
 
+RobotModel::RobotModel(const std::string& mjcf_path) : RobotModel(loadRobotModel(mjcf_path)) {}
+
+RobotModel::RobotModel(std::shared_ptr<const RobotModelDescription> description) : impl_(std::make_unique<Impl>()) {
+  if (!description) throw std::invalid_argument("RobotModel: no description");
+  Impl& I = *impl_;
+  const RobotModelDescription& D = *description;
+  I.desc = std::move(description);
+  I.path = D.path;
+  I.m = D.m;
+  I.n = D.n, I.nq = D.nq, I.nv = D.nv, I.base_body = D.base_body;
+  I.mass = D.mass;
+  I.grav = D.grav;
+  I.joint_names = D.joint_names;
+  I.frame_names = D.frame_names;
+  I.limits = D.limits;
+  I.home = D.home;
+  const mjModel* m = I.m;
   I.d = mj_makeData(m);
   I.q.setZero(I.nq);
   I.q[3] = 1.0;
@@ -185,6 +224,9 @@ RobotModel::RobotModel(const std::string& mjcf_path) : impl_(std::make_unique<Im
 }
 
 RobotModel::~RobotModel() = default;
+
+const std::shared_ptr<const RobotModelDescription>& RobotModel::description() const { return impl_->desc; }
+const std::string& RobotModel::path() const { return impl_->path; }
 
 int RobotModel::nq() const { return impl_->nq; }
 int RobotModel::nv() const { return impl_->nv; }

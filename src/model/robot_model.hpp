@@ -10,7 +10,8 @@
 //   Frame Jacobians are world-aligned at the frame origin: rows 0-2 linear velocity in W, rows 3-5 angular in W.
 //   Centroidal momentum h = A(q) v = [linear (3, W), angular about the CoM (3, W)].
 //   Bias forces b(q, v) = C(q, v) v + g(q), with M(q) vdot + b = S^T tau + sum J_c^T f_c.
-// Model/Data split: construction allocates everything; update() and all queries never allocate.
+// Model/Data split: loadRobotModel() parses the MJCF once into a const RobotModelDescription; each RobotModel is a
+// workspace on it. Construction allocates everything; update() and all queries never allocate.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -28,15 +29,27 @@ struct JointLimits {
   Eigen::VectorXd tau_max;       ///< [Nm]
 };
 
+/// The const part of a robot model: the MJCF parsed once, its joints, frames, limits and home posture. Shared
+/// by every RobotModel built from it (a workspace each), read-only after loading: safe to share across threads.
+struct RobotModelDescription;
+
+/// Loads the MJCF once; throws InputError naming the file if it cannot be loaded or has no free joint.
+std::shared_ptr<const RobotModelDescription> loadRobotModel(const std::string& mjcf_path);
+
 class RobotModel {
  public:
-  /// Loads the MJCF; throws InputError naming the file if it cannot be loaded or has no free joint.
+  /// Loads the MJCF (loadRobotModel) for this model alone.
   explicit RobotModel(const std::string& mjcf_path);
+  /// A workspace on a shared description: allocates its own data, parses nothing.
+  explicit RobotModel(std::shared_ptr<const RobotModelDescription> description);
   ~RobotModel();
   RobotModel(const RobotModel&) = delete;
   RobotModel& operator=(const RobotModel&) = delete;
 
   // ---- description (const) ----
+  /// What this workspace was built on (to build another one on the same description).
+  const std::shared_ptr<const RobotModelDescription>& description() const;
+  const std::string& path() const;  ///< the MJCF file it was loaded from
   int nq() const;  ///< 7 + n
   int nv() const;  ///< 6 + n
   int numJoints() const;  ///< n, actuated joints
