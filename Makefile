@@ -12,7 +12,7 @@ CENTAUR = $(BUILD)/src/cli/centaur
 DEBS = cmake make g++ pkg-config libeigen3-dev coinor-libipopt-dev libopenblas0-pthread \
        libmujoco-dev libqhull-dev libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev \
        libhdf5-dev libcli11-dev nlohmann-json3-dev libosmesa6-dev libstb-dev ffmpeg gnuplot-nox \
-       libopenmpi-dev openmpi-bin python3-h5py cyclonedds-dev cyclonedds-tools
+       libopenmpi-dev openmpi-bin python3-h5py cyclonedds-dev cyclonedds-tools libtinyxml2-dev
 # The HTML report (docs/report.md): chromium for its browser tests; Node.js + npm bundle its viewer at build time
 # (a node and npm already on PATH will do, e.g. a newer Node.js; otherwise Debian's).
 DEBS += chromium $(if $(shell command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1 && echo y),,nodejs npm)

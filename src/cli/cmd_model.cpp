@@ -1,7 +1,10 @@
 // centaur model check NAME|PATH [--json]
 // Validates a robot description (robot.yaml + its MJCF, docs/robots.md) and prints what centaur derives from
 // it: the template's parameters, the feet, the limits, each arm joint's pitch authority, with the warnings;
-// or every problem found (exit 2). With --json the last stdout line is one object (SI units, see toJson).
+// or every problem found (exit 2). With --json the last stdout line is one object (SI units, see factsJson).
+// centaur model import ROBOT.urdf --out DIR [--json]
+// A URDF becomes DIR/<name>.xml (MuJoCo's URDF compiler, plus a free joint, torque motors, sites, sensors and a
+// home keyframe) and DIR/robot.yaml with every guess marked; then the pair is checked as by `model check`.
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -13,12 +16,14 @@
 #include "common/error.hpp"
 #include "robot/robot_facts.hpp"
 #include "robot/robot_registry.hpp"
+#include "robot/urdf_import.hpp"
+#include "model/mjcf_load.hpp"
 
 namespace centaur::cli {
 namespace {
 
 struct ModelArgs {
-  std::string action, path;
+  std::string action, path, out;
   bool json = false;
 };
 
@@ -116,14 +121,43 @@ int runCheck(const ModelArgs& a) {
   return r.problems.empty() ? kExitOk : kExitBadInput;
 }
 
+int runImport(const ModelArgs& a) {
+  if (a.out.empty()) throw InputError("model import: --out DIR is required (where <name>.xml and robot.yaml go)");
+  installMujocoHandlers();
+  const robot::UrdfImportReport rep = robot::importUrdf(a.path, a.out);
+  for (const auto& w : rep.warnings) std::cerr << "warning: " << w << "\n";
+  const robot::RobotDescription d = robot::readRobotDescription(rep.yaml_path);
+  const robot::CheckResult r = robot::checkRobot(d);
+  for (const auto& w : r.warnings) std::cerr << "warning: " << w.text() << "\n";
+  for (const auto& p : r.problems) std::cerr << "to fix: " << p.text() << "\n";
+  if (!a.json) {
+    std::printf("%s: %d joints, %.3f kg -> %s, %s (%zu import warnings; confirm every '# GUESS' in robot.yaml)\n",
+                a.path.c_str(), rep.hinge_joints, rep.total_mass, rep.mjcf_path.c_str(), rep.yaml_path.c_str(),
+                rep.warnings.size());
+    if (!r.problems.empty()) std::printf("%zu problem(s) left for `centaur model check` (listed above)\n", r.problems.size());
+  } else {
+    printJsonLine(nlohmann::json{{"robot", rep.name}, {"mjcf", rep.mjcf_path}, {"robot_yaml", rep.yaml_path},
+                                 {"joints", rep.hinge_joints}, {"total_mass_kg", rep.total_mass},
+                                 {"import_warnings", rep.warnings}, {"ok", r.problems.empty()},
+                                 {"problems", findings(r.problems)}, {"warnings", findings(r.warnings)}});
+  }
+  return kExitOk;
+}
+
 const Registrar registrar{Command{
-    "model", "Check a robot description (robot.yaml + MJCF) and print what centaur derives from it",
+    "model", "Check a robot description (robot.yaml + MJCF) and print what centaur derives from it; import a URDF",
     [](CLI::App& sub) -> std::function<int()> {
       auto a = std::make_shared<ModelArgs>();
-      sub.add_option("action", a->action, "check")->required()->check(CLI::IsMember({"check"}));
-      sub.add_option("robot", a->path, "a shipped robot's name (models/NAME/) or a robot.yaml or its folder")->required();
-      sub.add_flag("--json", a->json, "print one JSON object {robot, ok, problems, warnings, derived} last on stdout");
-      return [a]() { return runCheck(*a); };
+      sub.add_option("action", a->action, "check: validate a robot; import: a URDF into a robot folder")
+          ->required()
+          ->check(CLI::IsMember({"check", "import"}));
+      sub.add_option("robot", a->path, "check: a shipped robot's name (models/NAME/), a robot.yaml or its folder; "
+                                       "import: the URDF")
+          ->required();
+      sub.add_option("--out", a->out, "import: the folder to write <name>.xml and robot.yaml into");
+      sub.add_flag("--json", a->json, "print one JSON object last on stdout (check: {robot, ok, problems, warnings, "
+                                      "derived}; import: {robot, mjcf, robot_yaml, joints, total_mass_kg, ...})");
+      return [a]() { return a->action == "import" ? runImport(*a) : runCheck(*a); };
     }}};
 
 }  // namespace

@@ -58,3 +58,28 @@ TEST(ModelCheckCli, UnknownRobotListsTheShippedOnes) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ModelImportCli, CentauroUrdfBecomesARobotThatChecks) {
+  const std::string urdf = std::string(CENTAUR_SOURCE_DIR) + "/../shared/reference/centauro/centauro.urdf";
+  if (!std::ifstream(urdf)) GTEST_SKIP() << "no reference URDF at " << urdf;
+  centaur_test::TempDir dir{"centaur-import-cli"};
+  const auto r = run("model import " + urdf + " --out " + dir.file("centauro") + " --json", false);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.last_line);
+  EXPECT_EQ(j["joints"], 39);
+  EXPECT_NEAR(j["total_mass_kg"].get<double>(), 93.113, 0.001 * 93.113);
+  EXPECT_TRUE(j["ok"].get<bool>()) << r.last_line;
+  EXPECT_EQ(run("model check " + dir.file("centauro")).code, 0);
+}
+
+TEST(ModelImportCli, MissingUrdfExitsTwoAndWritesNothing) {
+  centaur_test::TempDir dir{"centaur-import-cli"};
+  const auto r = run("model import " + dir.file("none.urdf") + " --out " + dir.file("out"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find(dir.file("none.urdf")), std::string::npos) << r.out;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+}  // namespace
