@@ -476,6 +476,15 @@ std::vector<std::string> listPrimitives(const FileImage& image) { return Reader(
 std::vector<Primitive> readPrimitives(const std::string& path) { return readAll(Reader(path)); }
 std::vector<Primitive> readPrimitives(const FileImage& image) { return readAll(Reader(image)); }
 Primitive readPrimitive(const std::string& path, const std::string& name) { return readOne(Reader(path), name); }
+
+void requirePlannedFor(const Primitive& p, const std::string& robot, const std::string& where) {
+  const auto it = p.strings.find("robot");
+  const std::string planned = it == p.strings.end() ? std::string("centauro") : it->second;
+  if (planned != robot) {
+    throw InputError(where + ": planned for robot '" + excerpt(planned) + "', but this run drives robot '" +
+                     excerpt(robot) + "': plan it for '" + excerpt(robot) + "' (key robot)");
+  }
+}
 Primitive readPrimitive(const FileImage& image, const std::string& name) { return readOne(Reader(image), name); }
 
 }  // namespace centaur::data

@@ -47,6 +47,11 @@ std::vector<Primitive> readPrimitives(const FileImage& image);
 
 /// One primitive by name; InputError naming the file and listing the available names if absent.
 Primitive readPrimitive(const std::string& path, const std::string& name);
+
+/// InputError naming both robots unless `p` was planned for `robot` (its string `robot`; a primitive written
+/// before primitives recorded their robot has none and was planned for CENTAURO, the only robot then). `where`
+/// names the primitive in the message (file and group).
+void requirePlannedFor(const Primitive& p, const std::string& robot, const std::string& where);
 Primitive readPrimitive(const FileImage& image, const std::string& name);
 
 }  // namespace centaur::data

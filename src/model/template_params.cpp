@@ -40,10 +40,13 @@ TemplateParams templatePreset(const std::string& name) {
   return P;
 }
 
-TemplateParams readTemplateParams(YamlReader r) {
+TemplateParams readTemplateParams(YamlReader r, const TemplateParams* derived) {
   std::string preset = "centauro";
-  r.get("preset", preset, templatePresetNames());
-  TemplateParams P = templatePreset(preset);
+  std::vector<std::string> allowed = templatePresetNames();
+  if (derived) allowed.push_back("derived");
+  r.get("preset", preset, allowed);
+  TemplateParams P = preset == "derived" ? *derived : templatePreset(preset);
+  P.preset = preset;
   r.get("waist_mass", P.waist_mass, 1e-3, 1000.0);
   Eigen::VectorXd com = P.waist_com;
   r.get("waist_com", com, -2.0, 2.0);

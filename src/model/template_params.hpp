@@ -2,7 +2,8 @@
 // Template-model presets and their YAML form (section `model:` of a planner configuration).
 //
 //   model:
-//     preset: centauro            # centauro | centauro-authors  (defaults below; every other key overrides)
+//     preset: centauro            # centauro | centauro-authors | derived (lumped from the robot's MJCF by
+//                                 # robot/robot_facts.hpp); every other key overrides
 //     waist_mass: 50.293          # [kg]            (0, 1000]
 //     waist_com: [x, y, z]        # [m] in B        each in [-2, 2]
 //     waist_inertia: [ixx, iyy, izz, ixy, ixz, iyz]  # [kg m^2] about the waist CoM; must be positive definite
@@ -31,8 +32,9 @@ namespace centaur::model {
 std::vector<std::string> templatePresetNames();
 /// A preset by name; throws InputError for an unknown name.
 TemplateParams templatePreset(const std::string& name);
-/// Read `model:` (preset + overrides) with range checks; throws InputError naming file and key.
-TemplateParams readTemplateParams(YamlReader reader);
+/// Read `model:` (preset + overrides) with range checks; throws InputError naming file and key. Preset
+/// `derived` is the robot's own template (robot/robot_facts.hpp), given as `derived` (nullptr: not allowed).
+TemplateParams readTemplateParams(YamlReader reader, const TemplateParams* derived = nullptr);
 /// Symmetric 3x3 from [ixx, iyy, izz, ixy, ixz, iyz].
 Eigen::Matrix3d inertiaFromList(const Eigen::Matrix<double, 6, 1>& v);
 

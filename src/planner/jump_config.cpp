@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 #include "common/excerpt.hpp"
 #include "common/yaml_reader.hpp"
 #include "model/template_params.hpp"
+#include "robot/robot_registry.hpp"
 
 namespace centaur::planner {
 
@@ -14,6 +16,7 @@ namespace {
 
 // The embedded defaults. config/<primitive>.yaml ships the same text with comments.
 const char* kSquatJumpDefaults = R"(primitive: squat-jump
+robot: centauro
 model:
   preset: centauro
 horizon:
@@ -236,7 +239,9 @@ std::string defaultJumpYaml(const std::string& primitive) {
     return toYamlString(mergeYaml(loadYamlString(kSquatJumpDefaults, "<defaults>"),
                                   loadYamlString(kHalfSquatOverrides, "<defaults>")));
   }
-  throw InputError("unknown primitive '" + primitive + "'; allowed: squat-jump, half-squat-jump");
+  std::string list;
+  for (const auto& n : jumpPrimitiveNames()) list += (list.empty() ? "" : ", ") + n;
+  throw InputError("unknown primitive '" + primitive + "'; allowed: " + list);
 }
 
 double JumpConfig::initialWaistHeight() const {
@@ -254,13 +259,14 @@ double JumpConfig::wallX() const {
   return rear_x - wall_distance - wheel_radius;
 }
 
-JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
+JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label, const model::TemplateParams* derived) {
   JumpConfig c;
   c.source = label;
   c.effective = YAML::Clone(root);
   YamlReader r(root, label);
-  r.get("primitive", c.primitive, {"squat-jump", "half-squat-jump"});
-  c.model = model::readTemplateParams(r.child("model"));
+  r.get("primitive", c.primitive, jumpPrimitiveNames());
+  r.get("robot", c.robot);
+  c.model = model::readTemplateParams(r.child("model"), derived);
   readHorizon(r, c);
   readStance(r, c);
   readContactLimitsTarget(r, c);
@@ -274,16 +280,64 @@ JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label) {
   return c;
 }
 
+std::vector<std::string> jumpPrimitiveNames() { return {"squat-jump", "half-squat-jump"}; }
+
+YAML::Node robotPlannerLayer(const robot::RobotDescription& d, const robot::RobotFacts& f, const std::string& primitive) {
+  YAML::Node layer(YAML::NodeType::Map);
+  layer["model"]["preset"] = "derived";
+  for (int k = 0; k < 4; ++k) {
+    YAML::Node p(YAML::NodeType::Sequence);
+    for (int i = 0; i < 3; ++i) p.push_back(f.b_p_foot[k][i]);
+    layer["feet"].push_back(p);
+  }
+  layer["feet"].SetStyle(YAML::EmitterStyle::Flow);
+  layer["wheel_radius"] = f.foot_radius[0];
+  const std::string folder = d.yaml_path.substr(0, d.yaml_path.find_last_of('/') + 1);
+  const std::string file = folder + "planner.yaml";
+  if (!std::ifstream(file)) return layer;
+  const YAML::Node own = loadYamlFile(file);
+  std::vector<std::string> sections = jumpPrimitiveNames();
+  sections.insert(sections.begin(), "all");
+  for (const auto& kv : own) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::find(sections.begin(), sections.end(), key) == sections.end()) {
+      std::string list;
+      for (const auto& n : sections) list += (list.empty() ? "" : ", ") + n;
+      throw InputError(file, excerpt(key), "unknown section; allowed: " + list + " (each a planner configuration)");
+    }
+    if (!kv.second.IsMap()) throw InputError(file, excerpt(key), "expected a mapping of planner configuration keys");
+  }
+  if (own["all"]) layer = mergeYaml(layer, own["all"]);
+  if (own[primitive]) layer = mergeYaml(layer, own[primitive]);
+  return layer;
+}
+
 JumpConfig loadJumpConfig(const std::string& primitive, const std::string& file, const std::vector<std::string>& overrides) {
   std::string label;
-  YAML::Node root = loadLayered(loadYamlString(defaultJumpYaml(primitive), "<defaults>"), file, overrides, label);
+  const YAML::Node defaults = loadYamlString(defaultJumpYaml(primitive), "<defaults>");
+  // The robot is a key of the configuration itself: read it from the user's layers first, then put the robot's
+  // layer (derived template, feet and radius, its planner.yaml) between the defaults and the user's layers.
+  const YAML::Node user = loadLayered(defaults, file, overrides, label);
+  const YAML::Node robot_key = user["robot"];
+  if (!robot_key.IsScalar() || robot_key.Scalar().empty()) throw InputError(label, "robot", "expected a robot's name or path");
+  robot::LoadedRobot robot;
+  try {
+    robot = robot::loadRobotWithFacts(robot_key.Scalar());
+  } catch (const InputError& e) {
+    throw InputError(label, "robot", e.what());
+  }
+  YAML::Node root = loadLayered(mergeYaml(defaults, robotPlannerLayer(robot.description, *robot.facts, primitive)),
+                                file, overrides, label);
   const YAML::Node declared = root["primitive"];
   if (declared && (!declared.IsScalar() || declared.Scalar() != primitive)) {
     throw InputError(label, "primitive",
                      "is " + (declared.IsScalar() ? "'" + excerpt(declared.Scalar()) + "'" : std::string("not a name")) +
                          " but the command plans '" + primitive + "'");
   }
-  return parseJumpConfig(root, label);
+  JumpConfig c = parseJumpConfig(root, label, &robot.facts->template_params);
+  c.robot = robot.description.name;
+  c.robot_hash = robot.description.hash;
+  return c;
 }
 
 }  // namespace centaur::planner

@@ -4,11 +4,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <array>
+#include <vector>
 #include <string>
 
 #include <Eigen/Core>
 
 #include "model/template_model.hpp"
+#include "robot/robot_facts.hpp"
 #include "planner/solver_settings.hpp"
 
 namespace centaur::planner {
@@ -70,6 +72,9 @@ struct CostConfig {
 
 struct JumpConfig {
   std::string primitive = "squat-jump";  ///< squat-jump | half-squat-jump
+  std::string robot = "centauro";        ///< key `robot`: a shipped robot's name or a robot.yaml (docs/robots.md);
+                                         ///< after loadJumpConfig() the description's name
+  std::string robot_hash;                ///< the description's hash (robot/robot_description.hpp), "" if not loaded
   model::TemplateParams model;
   HorizonConfig horizon;
   std::array<Eigen::Vector3d, 4> feet;  ///< initial foot points in the waist frame [m] (FL, FR, RL, RR)
@@ -94,11 +99,18 @@ struct JumpConfig {
 
 /// The embedded defaults of a primitive as YAML text (what `make demo` runs).
 std::string defaultJumpYaml(const std::string& primitive);
-/// Defaults of `primitive`, then the file (if any), then each --set override; validated.
-/// Throws InputError naming the file, key and allowed range.
+/// The jump primitives the planner knows.
+std::vector<std::string> jumpPrimitiveNames();
+/// Defaults of `primitive`, then the robot's layer (robotPlannerLayer of the key `robot`), then the file (if any),
+/// then each --set override; validated. Throws InputError naming the file, key and allowed range.
 JumpConfig loadJumpConfig(const std::string& primitive, const std::string& file,
                           const std::vector<std::string>& overrides);
-/// Parse an already merged YAML tree (validation only).
-JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label);
+/// Parse an already merged YAML tree (validation only); `derived` is what model preset `derived` means.
+JumpConfig parseJumpConfig(const YAML::Node& root, const std::string& label,
+                           const model::TemplateParams* derived = nullptr);
+
+/// What the robot brings to a planner configuration: model preset `derived`, its feet at home as the initial
+/// stance, its foot radius, then the sections `all` and `<primitive>` of planner.yaml beside its robot.yaml.
+YAML::Node robotPlannerLayer(const robot::RobotDescription& d, const robot::RobotFacts& f, const std::string& primitive);
 
 }  // namespace centaur::planner

@@ -144,6 +144,8 @@ void JumpProblem::fillMetadata(const Eigen::VectorXd& z, double sample_dt, const
   const auto& P = cfg_.model;
   out.config_yaml = toYamlString(cfg_.effective);
   out.strings["model_preset"] = P.preset;
+  out.strings["robot"] = cfg_.robot;  // the robot it was planned for (a simulation checks it) and its description's hash
+  out.strings["robot_hash"] = cfg_.robot_hash;
   out.strings["foot_point"] = "wheel centre";
   out.strings["friction_model"] = cfg_.contact.friction;
   out.strings["config_source"] = cfg_.source;

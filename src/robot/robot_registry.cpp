@@ -4,7 +4,9 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
+#include <mutex>
 
 #include "common/error.hpp"
 #include "common/excerpt.hpp"
@@ -47,5 +49,17 @@ std::string robotYamlPath(const std::string& name_or_path) {
 }
 
 RobotDescription loadRobot(const std::string& name_or_path) { return readRobotDescription(robotYamlPath(name_or_path)); }
+
+LoadedRobot loadRobotWithFacts(const std::string& name_or_path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const RobotFacts>> cache;  // yaml path + hash -> facts
+  LoadedRobot r{loadRobot(name_or_path), nullptr};
+  const std::string key = r.description.yaml_path + "#" + r.description.hash;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = cache[key];
+  if (!slot) slot = std::make_shared<const RobotFacts>(robotFacts(r.description));
+  r.facts = slot;
+  return r;
+}
 
 }  // namespace centaur::robot

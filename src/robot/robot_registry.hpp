@@ -5,7 +5,10 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
 #include "robot/robot_description.hpp"
+#include "robot/robot_facts.hpp"
 
 namespace centaur::robot {
 
@@ -19,5 +22,13 @@ std::vector<std::string> robotNames();
 std::string robotYamlPath(const std::string& name_or_path);
 /// readRobotDescription(robotYamlPath(name_or_path)).
 RobotDescription loadRobot(const std::string& name_or_path);
+
+/// A robot and its facts, derived once per process for each description (same file, same hash): configurations
+/// of many primitives (a sweep) share one derivation. InputError listing every problem of a broken robot.
+struct LoadedRobot {
+  RobotDescription description;
+  std::shared_ptr<const RobotFacts> facts;
+};
+LoadedRobot loadRobotWithFacts(const std::string& name_or_path);
 
 }  // namespace centaur::robot

@@ -10,6 +10,7 @@
 #include "common/yaml_reader.hpp"
 #include "data/primitive_io.hpp"
 #include "planner/jump_problem.hpp"
+#include "robot/robot_registry.hpp"
 #include "sim/default_arm_flywheel.hpp"
 #include "sim/jump_observer.hpp"
 #include "sim/scenario.hpp"
@@ -22,7 +23,12 @@ namespace {
 
 data::Primitive loadOrPlan(const std::string& name, const std::string& file, const std::string& group) {
   if (!group.empty() && file.empty()) throw InputError("--primitive-group " + group + ": needs --primitive F.h5");
-  if (!file.empty()) return data::readPrimitive(file, group.empty() ? name : group);
+  if (!file.empty()) {
+    const std::string g = group.empty() ? name : group;
+    data::Primitive p = data::readPrimitive(file, g);
+    data::requirePlannedFor(p, robot::kDefaultRobot, file + ", group '" + g + "'");  // the simulated robot
+    return p;
+  }
   std::fprintf(stderr, "planning %s with the default settings (give --primitive F.h5 to reuse a plan) ...\n",
                name.c_str());
   const planner::JumpConfig cfg = planner::loadJumpConfig(name, "", {});

@@ -83,3 +83,18 @@ TEST(ModelImportCli, MissingUrdfExitsTwoAndWritesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RobotCli, APrimitivePlannedForAnotherRobotIsRefusedNamingBoth) {
+  centaur_test::TempDir dir{"centaur-robot-cli"};
+  const auto plan = run("plan squat-jump --set robot=b2w_z1 --out " + dir.file("b2w.h5") + " --json", false);
+  ASSERT_EQ(plan.code, 0) << plan.out;
+  const auto r = run("simulate squat-jump --primitive " + dir.file("b2w.h5") + " --out " + dir.file("log.h5"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("planned for robot 'b2w_z1'"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("drives robot 'centauro'"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::ifstream(dir.file("log.h5")));
+}
+
+}  // namespace

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include "common/yaml_reader.hpp"
+#include "model/template_params.hpp"
 #include "planner/jump_config.hpp"
+#include "robot/robot_registry.hpp"
 
 using namespace centaur;
 using namespace centaur::planner;
@@ -75,4 +77,40 @@ TEST(JumpConfig, BadValuesNameTheKeyAndRange) {
   EXPECT_NE(message({"cost.unknown_term=1"}).find("cost.unknown_term"), std::string::npos);
   EXPECT_NE(message({"cost.last_interval=-1"}).find("cost.last_interval"), std::string::npos);
   EXPECT_NE(message({"cost.landing_steps=-1e-3"}).find("cost.landing_steps"), std::string::npos);
+}
+
+TEST(JumpConfig, RobotLayerPlansOnTheDerivedTemplateAndStanceAtHome) {
+  const JumpConfig c = loadJumpConfig("squat-jump", "", {"robot=b2w_z1"});
+  const auto robot = robot::loadRobotWithFacts("b2w_z1");
+  EXPECT_EQ(c.robot, "b2w_z1");
+  EXPECT_EQ(c.robot_hash, robot.description.hash);
+  EXPECT_EQ(c.model.preset, "derived");
+  EXPECT_EQ(c.model.waist_mass, robot.facts->template_params.waist_mass);
+  EXPECT_EQ(c.model.waist_com, robot.facts->template_params.waist_com);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(c.feet[k], robot.facts->b_p_foot[k]) << k;
+  EXPECT_EQ(c.wheel_radius, robot.facts->foot_radius[0]);
+  EXPECT_NEAR(c.initialWaistHeight(), robot.facts->home_base_height, 1e-9);  // the stance is the home posture
+  EXPECT_DOUBLE_EQ(c.target_height, 0.78);  // models/b2w_z1/planner.yaml
+  // A user's key still wins over the robot's layer.
+  EXPECT_DOUBLE_EQ(loadJumpConfig("squat-jump", "", {"robot=b2w_z1", "target.height=0.8"}).target_height, 0.8);
+}
+
+TEST(JumpConfig, CentauroKeepsItsPresetAndStance) {
+  const JumpConfig c = loadJumpConfig("half-squat-jump", "", {});
+  const auto preset = model::templatePreset("centauro");
+  EXPECT_EQ(c.robot, "centauro");
+  EXPECT_EQ(c.model.preset, "centauro");
+  EXPECT_EQ(c.model.waist_com, preset.waist_com);
+  EXPECT_EQ(c.feet[0], Eigen::Vector3d(0.35, 0.35, -0.6408));
+}
+
+TEST(JumpConfig, BadRobotNamesTheKey) {
+  try {
+    loadJumpConfig("squat-jump", "", {"robot=no-such-robot"});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'robot'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("centauro"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(loadJumpConfig("squat-jump", "", {"model.preset=derived", "robot=[1, 2]"}), InputError);
 }
