@@ -56,38 +56,51 @@ void MujocoRobot::configureModel() {
   }
 }
 
-// The actuated joints, in actuator order: torque motors on hinge or slide joints, their gears, effort and position
-// limits (model and data are deleted on bad input).
+// The actuated joints, in the model's joint order (the controller's), each with the torque motor that drives it:
+// motors are matched to joints by the joint they act on, never by their order. Gears, effort and position limits
+// (model and data are deleted on bad input).
 void MujocoRobot::readActuators() {
   const std::string& path = settings_.model_path;
+  auto fail = [&](const std::string& msg) {
+    mj_deleteData(d_);
+    mj_deleteModel(m_);
+    throw InputError(path + ": " + msg);
+  };
+  std::vector<int> motor_of_joint(m_->njnt, -1);
+  for (int i = 0; i < m_->nu; ++i) {
+    const int j = m_->actuator_trnid[2 * i];
+    const char* name = mj_id2name(m_, mjOBJ_ACTUATOR, i);
+    if (m_->actuator_trntype[i] != mjTRN_JOINT || j < 0 ||
+        (m_->jnt_type[j] != mjJNT_HINGE && m_->jnt_type[j] != mjJNT_SLIDE) || m_->actuator_dyntype[i] != mjDYN_NONE ||
+        m_->actuator_gaintype[i] != mjGAIN_FIXED || m_->actuator_biastype[i] != mjBIAS_NONE) {
+      fail("actuator '" + (name ? std::string(name) : std::to_string(i)) + "' must be a torque motor on a hinge or slide joint");
+    }
+    if (motor_of_joint[j] >= 0) fail("joint '" + std::string(mj_id2name(m_, mjOBJ_JOINT, j)) + "' has two motors");
+    motor_of_joint[j] = i;
+  }
   n_ = m_->nu;
   gear_.resize(n_);
   tau_max_.resize(n_);
   q_lo_.resize(n_);
   q_hi_.resize(n_);
-  for (int i = 0; i < m_->nu; ++i) {
-    const int j = m_->actuator_trnid[2 * i];
-    if (m_->actuator_trntype[i] != mjTRN_JOINT || j < 0 ||
-        (m_->jnt_type[j] != mjJNT_HINGE && m_->jnt_type[j] != mjJNT_SLIDE) || m_->actuator_dyntype[i] != mjDYN_NONE ||
-        m_->actuator_gaintype[i] != mjGAIN_FIXED || m_->actuator_biastype[i] != mjBIAS_NONE) {
-      const char* name = mj_id2name(m_, mjOBJ_ACTUATOR, i);
-      mj_deleteData(d_);
-      mj_deleteModel(m_);
-      throw InputError(path + ": actuator '" + (name ? name : std::to_string(i)) +
-                       "' must be a torque motor on a hinge or slide joint");
-    }
+  int k = 0;
+  for (int j = 0; j < m_->njnt; ++j) {
+    const int i = motor_of_joint[j];
+    if (i < 0) continue;
     const char* jname = mj_id2name(m_, mjOBJ_JOINT, j);
     joint_names_.emplace_back(jname ? jname : "joint" + std::to_string(j));
+    motor_.push_back(i);
     qpos_adr_.push_back(m_->jnt_qposadr[j]);
     dof_adr_.push_back(m_->jnt_dofadr[j]);
     const double gear = m_->actuator_gear[6 * i] * m_->actuator_gainprm[mjNGAIN * i];
-    gear_[i] = gear;
-    tau_max_[i] = m_->actuator_ctrllimited[i]
+    gear_[k] = gear;
+    tau_max_[k] = m_->actuator_ctrllimited[i]
                       ? std::min(std::abs(m_->actuator_ctrlrange[2 * i]), std::abs(m_->actuator_ctrlrange[2 * i + 1])) *
                             std::abs(gear)
                       : kInf;
-    q_lo_[i] = m_->jnt_limited[j] ? m_->jnt_range[2 * j] : -kInf;
-    q_hi_[i] = m_->jnt_limited[j] ? m_->jnt_range[2 * j + 1] : kInf;
+    q_lo_[k] = m_->jnt_limited[j] ? m_->jnt_range[2 * j] : -kInf;
+    q_hi_[k] = m_->jnt_limited[j] ? m_->jnt_range[2 * j + 1] : kInf;
+    ++k;
   }
 }
 
@@ -286,7 +299,7 @@ void MujocoRobot::applyImpedance() {
     tau_cmd_[i] = tau;
     const double sat = std::clamp(tau, -tau_max_[i], tau_max_[i]);
     tau_applied_[i] = sat;
-    d_->ctrl[i] = sat / gear_[i];
+    d_->ctrl[motor_[i]] = sat / gear_[i];
   }
 }
 

@@ -12,8 +12,8 @@
 // (after saturation), i.e. what an ideal joint torque sensor would read. Optional Gaussian noise (seeded) and
 // a measurement delay of `latency_periods` control periods; both off by default.
 //
-// Joint order: the MJCF actuator order (CENTAURO's MJCF names each motor after its joint, in the same order
-// as RobotModel::jointNames()). Every actuator must be a motor on a hinge/slide joint.
+// Joint order: the model's joint order, as RobotModel::jointNames(); each joint's motor is the actuator that acts
+// on it, whatever the actuators' order in the MJCF. Every actuator must be a torque motor on a hinge/slide joint.
 //
 // Perturbations (sweeps; all off by default, and then the model is used exactly as loaded): every robot body's
 // mass and inertia scaled, the whole robot's CoM shifted (by moving the floating-base body's CoM), and a push
@@ -158,6 +158,7 @@ class MujocoRobot final : public RobotInterface {
   Eigen::Index n_ = 0;
   std::vector<std::string> joint_names_;
   std::vector<int> qpos_adr_, dof_adr_;
+  std::vector<int> motor_;  // per joint (model order), its actuator's index
   Eigen::VectorXd gear_, tau_max_, q_lo_, q_hi_;
   int base_qpos_ = -1, base_dof_ = -1;  // free joint (-1 if fixed base)
   int push_body_ = -1;                   // body pushed (-1: no push)

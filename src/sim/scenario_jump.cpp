@@ -69,7 +69,7 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
     const auto& jump = static_cast<const JumpController&>(*controller);
     if (jump.wholeBody().ikModel().jointNames() != ctx.robot.jointNames()) {
       throw InputError(ctx.config.robot.model_path +
-                       ": the controller model's joint order differs from the simulator's actuator order");
+                       ": the controller model's joints differ from the simulator's motor-driven joints (a joint without a motor?)");
     }
     return controller;
   };

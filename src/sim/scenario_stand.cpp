@@ -18,7 +18,7 @@ Scenario standScenario() {
     auto controller = makeOnlineController("stand", ctx.controller_config, in);
     if (static_cast<const StandingController&>(*controller).model().jointNames() != ctx.robot.jointNames()) {
       throw InputError(ctx.config.robot.model_path +
-                       ": the controller model's joint order differs from the simulator's actuator order");
+                       ": the controller model's joints differ from the simulator's motor-driven joints (a joint without a motor?)");
     }
     return controller;
   };
