@@ -177,6 +177,25 @@ void WholeBodyController::setAngularMomentum(const Eigen::Vector3d& h_ang_d) {
   if (momentum_) momentum_->setReference(h_ang_d);
 }
 
+void WholeBodyController::setReferences(const WholeBodyReferences& r) noexcept {
+  if ((r.set & WholeBodyReferences::kPosture) && posture_) posture_->setReference(r.q_posture);
+  if ((r.set & WholeBodyReferences::kPostureVelocity) && posture_) posture_->setVelocityReference(r.qd_posture);
+  if ((r.set & WholeBodyReferences::kPelvisAngularVelocity) && pelvis_) pelvis_->setReference(r.w_omega_pelvis);
+  if ((r.set & WholeBodyReferences::kAngularMomentum) && momentum_) momentum_->setReference(r.h_angular);
+}
+
+void WholeBodyController::requireTasks(unsigned mask, const std::string& who) const {
+  auto need = [&](unsigned bit, const void* task, const std::string& name, const char* what) {
+    if ((mask & bit) && !task) {
+      throw InputError(who + " sets the " + what + ", but its stack has no task '" + name + "' of that kind");
+    }
+  };
+  need(WholeBodyReferences::kPosture, posture_.get(), params_.posture_task, "posture reference");
+  need(WholeBodyReferences::kPostureVelocity, posture_.get(), params_.posture_task, "posture velocity");
+  need(WholeBodyReferences::kPelvisAngularVelocity, pelvis_.get(), params_.pelvis_task, "pelvis angular velocity");
+  need(WholeBodyReferences::kAngularMomentum, momentum_.get(), params_.momentum_task, "angular momentum");
+}
+
 void WholeBodyController::setContactNormals(const std::array<Eigen::Vector3d, 4>& w_normal) noexcept {
   for (int k = 0; k < 4; ++k) {
     if (!w_normal[k].allFinite() || w_normal[k].norm() < 0.5) continue;

@@ -81,6 +81,21 @@ struct WholeBodyCounters {
   long force_relaxed = 0;   ///< relaxed force distributions
 };
 
+/// The references an upper-body stabilizer hands the whole-body controller each period; setReferences() applies
+/// those whose bit is set. The vectors are sized once (n joints) by whoever owns the struct.
+struct WholeBodyReferences {
+  enum : unsigned { kPosture = 1u, kPostureVelocity = 2u, kPelvisAngularVelocity = 4u, kAngularMomentum = 8u };
+  unsigned set = 0;                                          ///< which references this period carries
+  Eigen::VectorXd q_posture;                                 ///< [rad] posture reference of all n joints
+  Eigen::VectorXd qd_posture;                                ///< [rad/s] its velocity feed-forward
+  Eigen::Vector3d w_omega_pelvis = Eigen::Vector3d::Zero();  ///< [rad/s] pelvis angular velocity, W
+  Eigen::Vector3d h_angular = Eigen::Vector3d::Zero();       ///< [kg m^2/s] centroidal angular momentum, W
+  void resize(int n) {
+    q_posture.setZero(n);
+    qd_posture.setZero(n);
+  }
+};
+
 class WholeBodyController final : public Controller {
  public:
   using Forces = Eigen::Matrix<double, 3, 4>;
@@ -107,6 +122,11 @@ class WholeBodyController final : public Controller {
   void setPostureVelocity(const Eigen::Ref<const Eigen::VectorXd>& qd_d);
   void setPelvisAngularVelocity(const Eigen::Vector3d& w_omega_d);
   void setAngularMomentum(const Eigen::Vector3d& h_ang_d);
+  /// The references whose bit is set in r.set (sizes as the model's). No allocation.
+  void setReferences(const WholeBodyReferences& r) noexcept;
+  /// InputError naming `who` and the task unless the stack has the task that takes each reference of `mask`
+  /// (WholeBodyReferences bits): a reference without its task would be dropped silently.
+  void requireTasks(unsigned mask, const std::string& who) const;
   /// Unit surface normal (W) of each wheel's (current or next) contact: used by the contact detector and the
   /// force distribution (default +z, flat ground).
   void setContactNormals(const std::array<Eigen::Vector3d, 4>& w_normal) noexcept;

@@ -18,15 +18,21 @@ std::string AngmomStabilizer::stackYaml() const { return angmomStackYaml(); }
 
 void AngmomStabilizer::start(const std::vector<std::string>&, const Eigen::VectorXd& q_home) {
   q_home_ = q_home;
-  sent_ = false;
 }
 
-void AngmomStabilizer::update(const RobotState& state, double, bool, WholeBodyController& wbc) noexcept {
-  if (!sent_) wbc.setPostureReference(q_home_);
-  sent_ = true;
+unsigned AngmomStabilizer::references() const {
+  return WholeBodyReferences::kPosture | WholeBodyReferences::kPelvisAngularVelocity | WholeBodyReferences::kAngularMomentum;
+}
+
+void AngmomStabilizer::update(const RobotState& state, double, bool, WholeBodyReferences& out) noexcept {
+  out.q_posture = q_home_;
+  out.set = WholeBodyReferences::kPosture | WholeBodyReferences::kAngularMomentum;
   const Eigen::Vector3d w_omega = state.imu_quat * state.imu_omega;
-  if (w_omega.allFinite()) wbc.setPelvisAngularVelocity(-params_.gain * w_omega);
-  wbc.setAngularMomentum(Eigen::Vector3d::Zero());
+  if (w_omega.allFinite()) {  // a non-finite measurement keeps the last pelvis reference
+    out.w_omega_pelvis = -params_.gain * w_omega;
+    out.set |= WholeBodyReferences::kPelvisAngularVelocity;
+  }
+  out.h_angular.setZero();
 }
 
 }  // namespace centaur

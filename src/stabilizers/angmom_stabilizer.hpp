@@ -23,12 +23,12 @@ class AngmomStabilizer final : public Stabilizer {
   const char* name() const override { return "angmom"; }
   std::string stackYaml() const override;
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
-  void update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept override;
+  unsigned references() const override;
+  void update(const RobotState& state, double dt, bool active, WholeBodyReferences& out) noexcept override;
 
  private:
   AngmomParams params_;
   Eigen::VectorXd q_home_;
-  bool sent_ = false;
 };
 
 }  // namespace centaur

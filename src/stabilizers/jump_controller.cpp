@@ -47,6 +47,8 @@ JumpController::JumpController(const std::string& mjcf_path, const data::Primiti
   params_.wbc.stack_file.clear();
   params_.wbc.stack_yaml = stabilizer_->stackYaml();
   wbc_ = std::make_unique<WholeBodyController>(mjcf_path, params_.wbc);
+  wbc_->requireTasks(stabilizer_->references(), std::string("stabilizer '") + stabilizer_->name() + "'");
+  refs_.resize(wbc_->ikModel().numJoints());
   vdot_.setZero(wbc_->ikModel().nv());
   replay_.sample(0.0, first_);
   replay_.sample(replay_.duration(), last_);
@@ -143,7 +145,8 @@ void JumpController::tick(const RobotState& state, JointCommand& command) noexce
     }
   }
   wbc_->setStanceMask(allowed);
-  stabilizer_->update(state, dt, sample_.running, *wbc_);
+  stabilizer_->update(state, dt, sample_.running, refs_);
+  wbc_->setReferences(refs_);
   wbc_->tick(state, command);
 }
 

@@ -87,6 +87,7 @@ class JumpController final : public SupervisedController {
   PrimitiveReplay replay_;
   std::unique_ptr<Stabilizer> stabilizer_;
   std::unique_ptr<WholeBodyController> wbc_;
+  WholeBodyReferences refs_;  // the stabilizer's references of the period (sized once)
   ReplaySample sample_, first_, last_;
   Eigen::VectorXd vdot_;
   Eigen::Matrix<double, 3, 4> w_search_ = Eigen::Matrix<double, 3, 4>::Zero(), w_search_end_ = w_search_;

@@ -9,12 +9,13 @@ std::string NoStabilizer::stackYaml() const { return postureStackYaml(); }
 
 void NoStabilizer::start(const std::vector<std::string>&, const Eigen::VectorXd& q_home) {
   q_home_ = q_home;
-  sent_ = false;
 }
 
-void NoStabilizer::update(const RobotState&, double, bool, WholeBodyController& wbc) noexcept {
-  if (!sent_) wbc.setPostureReference(q_home_);
-  sent_ = true;
+unsigned NoStabilizer::references() const { return WholeBodyReferences::kPosture; }
+
+void NoStabilizer::update(const RobotState&, double, bool, WholeBodyReferences& out) noexcept {
+  out.q_posture = q_home_;
+  out.set = WholeBodyReferences::kPosture;
 }
 
 }  // namespace centaur

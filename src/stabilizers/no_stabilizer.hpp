@@ -10,11 +10,11 @@ class NoStabilizer final : public Stabilizer {
   const char* name() const override { return "none"; }
   std::string stackYaml() const override;
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
-  void update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept override;
+  unsigned references() const override;
+  void update(const RobotState& state, double dt, bool active, WholeBodyReferences& out) noexcept override;
 
  private:
   Eigen::VectorXd q_home_;
-  bool sent_ = false;
 };
 
 }  // namespace centaur

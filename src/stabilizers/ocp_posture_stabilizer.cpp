@@ -185,11 +185,17 @@ void OcpPostureStabilizer::step(const RobotState& state, double dt, bool active)
   }
 }
 
-void OcpPostureStabilizer::update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept {
+unsigned OcpPostureStabilizer::references() const {
+  return WholeBodyReferences::kPosture | (params_.velocity_feedforward ? WholeBodyReferences::kPostureVelocity : 0u);
+}
+
+void OcpPostureStabilizer::update(const RobotState& state, double dt, bool active, WholeBodyReferences& out) noexcept {
   step(state, dt, active);
+  out.set = 0;
   if (q_d_.size() == 0) return;
-  wbc.setPostureReference(q_d_);
-  if (params_.velocity_feedforward) wbc.setPostureVelocity(qd_d_);
+  out.q_posture = q_d_;
+  out.qd_posture = qd_d_;
+  out.set = references();
 }
 
 }  // namespace centaur

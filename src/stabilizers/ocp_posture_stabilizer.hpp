@@ -69,7 +69,8 @@ class OcpPostureStabilizer final : public Stabilizer {
   std::string stackYaml() const override;
   /// Throws InputError if an arm joint of the plan (or its j_arm2_* mirror) is not among joint_names.
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
-  void update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept override;
+  unsigned references() const override;
+  void update(const RobotState& state, double dt, bool active, WholeBodyReferences& out) noexcept override;
 
   /// The part of update() that computes the reference (no controller needed): advances the phase and q_d.
   void step(const RobotState& state, double dt, bool active) noexcept;

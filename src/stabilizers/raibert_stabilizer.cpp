@@ -61,7 +61,11 @@ void RaibertStabilizer::start(const std::vector<std::string>& names, const Eigen
   qd_d_.setZero(q_home.size());
 }
 
-void RaibertStabilizer::update(const RobotState& state, double dt, bool, WholeBodyController& wbc) noexcept {
+unsigned RaibertStabilizer::references() const {
+  return WholeBodyReferences::kPosture | (params_.velocity_feedforward ? WholeBodyReferences::kPostureVelocity : 0u);
+}
+
+void RaibertStabilizer::update(const RobotState& state, double dt, bool, WholeBodyReferences& out) noexcept {
   const double w = state.imu_omega.y();
   if (std::isfinite(w) && dt > 0.0) {
     for (std::size_t s = 0; s < idx_.size(); ++s) {
@@ -73,8 +77,9 @@ void RaibertStabilizer::update(const RobotState& state, double dt, bool, WholeBo
       q_d_[i] = q_home_[i] + off;
     }
   }
-  wbc.setPostureReference(q_d_);
-  if (params_.velocity_feedforward) wbc.setPostureVelocity(qd_d_);
+  out.q_posture = q_d_;
+  out.qd_posture = qd_d_;
+  out.set = references();
 }
 
 }  // namespace centaur

@@ -38,7 +38,8 @@ class RaibertStabilizer final : public Stabilizer {
   std::string stackYaml() const override;
   /// Throws InputError for an unknown joint name.
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
-  void update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept override;
+  unsigned references() const override;
+  void update(const RobotState& state, double dt, bool active, WholeBodyReferences& out) noexcept override;
   const Eigen::VectorXd& postureReference() const { return q_d_; }
   /// d q_d / dt of the last update [rad/s] (fed to the posture task if velocity_feedforward).
   const Eigen::VectorXd& postureVelocity() const { return qd_d_; }

@@ -1,7 +1,8 @@
 #pragma once
 // An upper-body stabilizer (paper Sec. IV): every control period it reads the measurement (IMU angular
-// velocity, joint state) and writes references into the whole-body controller through its hooks
-// (setPostureReference, setPelvisAngularVelocity, setAngularMomentum). Each stabilizer needs its own IK stack
+// velocity, joint state) and returns references (posture, its velocity, pelvis angular velocity, angular
+// momentum: WholeBodyReferences), which the jump controller hands the whole-body controller; references() says
+// which it may return, and the jump controller checks that its stack has their tasks. Each stabilizer needs its own IK stack
 // (which tasks exist, at which priority): stackYaml() returns it, and the jump controller builds the
 // WholeBodyController from it.
 //
@@ -16,10 +17,9 @@
 #include <Eigen/Core>
 
 #include "controller/robot_interface.hpp"
+#include "controller/whole_body_controller.hpp"
 
 namespace centaur {
-
-class WholeBodyController;
 
 class Stabilizer {
  public:
@@ -30,9 +30,12 @@ class Stabilizer {
   virtual std::string stackYaml() const = 0;
   /// Once, before the loop: joint names (RobotModel order) and the home posture [rad] (n).
   virtual void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) = 0;
+  /// The WholeBodyReferences bits update() may set.
+  virtual unsigned references() const = 0;
   /// Every control period (dt [s]); `active` is false before the primitive starts and after it ended
-  /// (a stabilizer may keep acting or relax towards home then). Writes references into `wbc`.
-  virtual void update(const RobotState& state, double dt, bool active, WholeBodyController& wbc) noexcept = 0;
+  /// (a stabilizer may keep acting or relax towards home then). Fills `out` (sized by the caller, n joints) and
+  /// sets out.set to the references it carries this period.
+  virtual void update(const RobotState& state, double dt, bool active, WholeBodyReferences& out) noexcept = 0;
 };
 
 }  // namespace centaur

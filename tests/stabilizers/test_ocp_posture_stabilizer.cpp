@@ -305,11 +305,14 @@ TEST(OcpPosture, UpdateThroughTheWholeBodyControllerAllocatesNothing) {
   JointCommand cmd;
   wbc.start(s, cmd);
   st.start(r.names, r.home);
+  WholeBodyReferences refs;
+  refs.resize(static_cast<int>(r.names.size()));
   const long before = centaur_test::heapAllocations();
   for (int k = 0; k < 1000; ++k) {
     s.t = 0.001 * (k + 1);
     s.imu_omega.y() = 0.8 * std::sin(0.01 * k);
-    st.update(s, 0.001, k > 300, wbc);
+    st.update(s, 0.001, k > 300, refs);
+    wbc.setReferences(refs);
     wbc.tick(s, cmd);
     s.q = cmd.q_ref;
     s.qd = cmd.qd_ref;

@@ -63,11 +63,13 @@ TEST(Raibert, PostureOffsetIsTheIntegratedPitchRate) {
   const auto wbc = controllerFor(stab, m);
   RobotState state;
   state.resize(m.numJoints());
+  WholeBodyReferences refs;
+  refs.resize(m.numJoints());
   const double dt = 0.001;
   state.imu_omega = Eigen::Vector3d(0.3, 0.5, -0.2);  // only the pitch rate counts
-  for (int k = 0; k < 200; ++k) stab.update(state, dt, true, *wbc);  // 0.1 rad of pitch
+  for (int k = 0; k < 200; ++k) stab.update(state, dt, true, refs);  // 0.1 rad of pitch
   state.imu_omega.y() = -0.25;
-  for (int k = 0; k < 200; ++k) stab.update(state, dt, true, *wbc);  // -0.05 rad: 0.05 rad in total
+  for (int k = 0; k < 200; ++k) stab.update(state, dt, true, refs);  // -0.05 rad: 0.05 rad in total
   for (std::size_t s = 0; s < p.joints.size(); ++s) {
     const int i = m.jointIndex(p.joints[s]);
     EXPECT_NEAR(stab.postureReference()[i] - m.homeJoints()[i], p.gains[s] * p.directions[s] * 0.05, 1e-9);
@@ -79,7 +81,7 @@ TEST(Raibert, PostureOffsetIsTheIntegratedPitchRate) {
   }
   // clamped at max_offset
   state.imu_omega.y() = 100.0;
-  for (int k = 0; k < 1000; ++k) stab.update(state, dt, true, *wbc);
+  for (int k = 0; k < 1000; ++k) stab.update(state, dt, true, refs);
   const int e = m.jointIndex("j_arm1_4");
   EXPECT_NEAR(stab.postureReference()[e] - m.homeJoints()[e], p.max_offset, 1e-12);
 }
@@ -92,9 +94,13 @@ TEST(Angmom, PelvisReferenceIsMinusTheWorldImuRate) {
   const auto wbc = controllerFor(stab, m);
   RobotState state;
   state.resize(m.numJoints());
+  WholeBodyReferences refs;
+  refs.resize(m.numJoints());
   state.imu_quat = Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
   state.imu_omega = Eigen::Vector3d(0.1, 0.7, 0.0);
-  stab.update(state, 0.001, true, *wbc);
+  stab.update(state, 0.001, true, refs);
+  EXPECT_TRUE(refs.set & WholeBodyReferences::kPelvisAngularVelocity);
+  wbc->setReferences(refs);
   const auto& pelvis = wbc->stack().tasks.at("pelvis");
   pelvis->update();  // b = omega_fb,d (lambda 1) on the model's last update
   const Eigen::Vector3d expected = -0.5 * (state.imu_quat * state.imu_omega);
@@ -109,11 +115,33 @@ TEST(Stabilizers, UpdateNeverAllocates) {
   const auto wbc = controllerFor(angmom, m);
   RobotState state;
   state.resize(m.numJoints());
+  WholeBodyReferences refs;
+  refs.resize(m.numJoints());
   state.imu_omega = Eigen::Vector3d(0.1, 0.7, 0.0);
   const long before = centaur_test::heapAllocations();
   for (int k = 0; k < 1000; ++k) {
-    raibert.update(state, 0.001, true, *wbc);
-    angmom.update(state, 0.001, true, *wbc);
+    raibert.update(state, 0.001, true, refs);
+    wbc->setReferences(refs);
+    angmom.update(state, 0.001, true, refs);
+    wbc->setReferences(refs);
   }
   EXPECT_EQ(centaur_test::heapAllocations() - before, 0);
+}
+
+TEST(Stabilizers, AReferenceWithoutItsTaskIsAnError) {
+  // The angular-momentum stabilizer sets the pelvis angular velocity and the momentum: a posture-only stack has
+  // neither task, and the references would be dropped without a word.
+  RobotModel m(kModel);
+  AngmomStabilizer angmom{AngmomParams{}};
+  RaibertStabilizer raibert{RaibertParams{}};
+  WholeBodyParams wp;
+  wp.stack_yaml = raibert.stackYaml();
+  WholeBodyController wbc(kModel, wp);
+  EXPECT_NO_THROW(wbc.requireTasks(raibert.references(), "raibert"));
+  try {
+    wbc.requireTasks(angmom.references(), "stabilizer 'angmom'");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("stabilizer 'angmom' sets the pelvis angular velocity"), std::string::npos) << e.what();
+  }
 }
