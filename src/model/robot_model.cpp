@@ -41,12 +41,9 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat3C = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
 using Vec3C = Eigen::Map<const Eigen::Vector3d>;
 
-}  // namespace
-
-// The const part: MuJoCo's model and what is read from it once. Never written after loadRobotModel().
-struct RobotModelDescription {
+// What is read from MuJoCo's model once: the description holds it, each workspace a copy for its queries.
+struct ModelFacts {
   std::string path;
-  mjModel* m = nullptr;
   int n = 0, nq = 0, nv = 0;
   int base_body = -1;
   double mass = 0.0;
@@ -55,25 +52,22 @@ struct RobotModelDescription {
   std::vector<std::string> frame_names;  // bodies, then sites
   JointLimits limits;
   Eigen::VectorXd home;
+};
+
+}  // namespace
+
+// The const part: MuJoCo's model and its facts. Never written after loadRobotModel().
+struct RobotModelDescription : ModelFacts {
+  mjModel* m = nullptr;
   ~RobotModelDescription() {
     if (m) mj_deleteModel(m);
   }
 };
 
-struct RobotModel::Impl {
+struct RobotModel::Impl : ModelFacts {
   std::shared_ptr<const RobotModelDescription> desc;
-  // copies of the description's facts, for the queries (made once, at construction)
-  std::string path;
   const mjModel* m = nullptr;
   mjData* d = nullptr;
-  int n = 0, nq = 0, nv = 0;
-  int base_body = -1;
-  double mass = 0.0;
-  Eigen::Vector3d grav = Eigen::Vector3d::Zero();
-  std::vector<std::string> joint_names;
-  std::vector<std::string> frame_names;  // bodies, then sites
-  JointLimits limits;
-  Eigen::VectorXd home;
 
   // results of update()
   Eigen::VectorXd q, v;
@@ -197,16 +191,9 @@ RobotModel::RobotModel(std::shared_ptr<const RobotModelDescription> description)
   if (!description) throw std::invalid_argument("RobotModel: no description");
   Impl& I = *impl_;
   const RobotModelDescription& D = *description;
-  I.desc = std::move(description);
-  I.path = D.path;
+  static_cast<ModelFacts&>(I) = D;
   I.m = D.m;
-  I.n = D.n, I.nq = D.nq, I.nv = D.nv, I.base_body = D.base_body;
-  I.mass = D.mass;
-  I.grav = D.grav;
-  I.joint_names = D.joint_names;
-  I.frame_names = D.frame_names;
-  I.limits = D.limits;
-  I.home = D.home;
+  I.desc = std::move(description);
   const mjModel* m = I.m;
   I.d = mj_makeData(m);
   I.q.setZero(I.nq);
