@@ -41,6 +41,7 @@ struct PlanArgs {
   bool json = false;
   bool quiet = false;
   std::string warm_start;  // F.h5[:group]
+  std::string robot;       // --robot: the configuration key `robot`, after every --set
 };
 
 /// --warm-start F.h5[:group] as (file, group); the group defaults to the primitive being planned.
@@ -211,7 +212,19 @@ const Registrar kPlan{{"plan", "Plan a lower-body primitive (template-model OCP 
                          sub.add_option("--warm-start", a->warm_start,
                                         "start from the knots of a neighbouring primitive F.h5[:group] (same horizon; "
                                         "group defaults to the primitive planned)");
-                         return [a]() { return runPlan(*a); };
+                         sub.add_option("--robot", a->robot,
+                                        "the robot: a shipped one (models/NAME/) or a robot.yaml (docs/robots.md); "
+                                        "default: the configuration's key robot (centauro)");
+                         return [a]() {
+                           if (!a->robot.empty()) {
+                             if (a->primitive == "arm-flywheel") {
+                               throw InputError("plan arm-flywheel: --robot is not available yet (it plans the arm of "
+                                                "the MJCF of key mjcf)");
+                             }
+                             a->overrides.push_back("robot=" + a->robot);
+                           }
+                           return runPlan(*a);
+                         };
                        }}};
 
 }  // namespace
