@@ -17,12 +17,17 @@ The script never reads those files; the committed XML is the artifact.
 
 Usage:  python3 tools/gen_b2w_z1_mjcf.py [--out models/b2w_z1/b2w_z1.xml] [--check]
   --check regenerates in memory, prints the model facts and fails (exit 1) if the file at --out differs.
-Pure python3 standard library.
+Pure python3 standard library (helpers shared with the other generators: tools/mjcf_gen.py).
 """
-import argparse
 import math
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # mjcf_gen.py, from any working directory
+sys.dont_write_bytecode = True  # no tools/__pycache__ left in the work tree
+from mjcf_gen import (COMPILER_XML, IMU_SENSOR_XML, VISUAL_CLASS_XML, actuator_xml,  # noqa: E402
+                      contact_class_xml, fmt, hinge_xml, home_keyframe_xml, identity, main, mmul, mvec, rot,
+                      vadd)
 
 X, Y, Z = [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]
 
@@ -138,37 +143,6 @@ HOME_ARM = {'joint1': 0.0, 'joint2': 1.8, 'joint3': -1.0, 'joint4': 0.75, 'joint
 
 RGBA = {'shell': '0.78 0.79 0.8 1', 'dark': '0.16 0.16 0.17 1', 'arm': '0.88 0.88 0.86 1',
         'hub': '0.45 0.46 0.48 1', 'tyre': '0.05 0.05 0.05 1'}
-
-
-# ---------------------------------------------------------------- small vector / rotation helpers (no numpy)
-def mmul(a, b):
-    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-
-
-def mvec(a, v):
-    return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
-
-
-def vadd(a, b):
-    return [a[i] + b[i] for i in range(3)]
-
-
-def rot(axis, angle):
-    """Rotation matrix about a unit axis (Rodrigues)."""
-    x, y, z = axis
-    c, s = math.cos(angle), math.sin(angle)
-    t = 1.0 - c
-    return [[c + x * x * t, x * y * t - z * s, x * z * t + y * s],
-            [y * x * t + z * s, c + y * y * t, y * z * t - x * s],
-            [z * x * t - y * s, z * y * t + x * s, c + z * z * t]]
-
-
-def fmt(v, digits=10):
-    out = []
-    for x in v:
-        s = '%.*g' % (digits, x)
-        out.append('0' if s == '-0' else s)
-    return ' '.join(out)
 
 
 # ---------------------------------------------------------------- sagittal mirror (y -> -y)
@@ -300,7 +274,7 @@ def fk(bodies, q):
     poses, mass, mc = {}, 0.0, [0.0, 0.0, 0.0]
     for b in bodies:  # parents come before their children
         if b['parent'] is None:
-            R, p = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [0.0, 0.0, 0.0]
+            R, p = identity(), [0.0, 0.0, 0.0]
         else:
             R0, p0 = poses[b['parent']]
             p = vadd(p0, mvec(R0, b['pos']))
@@ -340,16 +314,6 @@ def inertial_xml(inertial):
     return '<inertial pos="%s" quat="%s" mass="%s" diaginertia="%s"/>' % (fmt(com), fmt(quat), fmt([m]), fmt(diag))
 
 
-def joint_xml(j):
-    """Hinge with its velocity limit in `user`; a joint without range (the wheels) is explicitly unlimited."""
-    if j['range'] is None:
-        limits = 'limited="false"'
-    else:
-        limits = 'range="%s"' % fmt(j['range'])
-    return '<joint name="%s" axis="%s" %s armature="%g" user="%g"/>' % (
-        j['name'], fmt(j['axis']), limits, j['armature'], j['vel'])
-
-
 def body_xml(bodies, b, indent, out, base_z):
     pad = ' ' * indent
     pos = [0.0, 0.0, base_z] if b['parent'] is None else b['pos']
@@ -358,8 +322,9 @@ def body_xml(bodies, b, indent, out, base_z):
     if b['parent'] is None:
         out.append(p2 + '<freejoint name="root"/>')
     out.append(p2 + inertial_xml(b['inertial']))
-    if b['joint']:
-        out.append(p2 + joint_xml(b['joint']))
+    j = b['joint']
+    if j:  # a joint without range (the wheels) is written unlimited
+        out.append(p2 + hinge_xml(j['name'], j['axis'], j['range'], j['armature'], j['vel']))
     out += [p2 + g for g in b['geoms']]
     out += [p2 + s for s in b['sites']]
     for child in bodies:
@@ -376,23 +341,17 @@ def header_xml(n_hinges, mass):
         '     our design, not a Unitree product), for MuJoCo 2.2.2: %d hinge joints, %.1f kg, the robot alone. -->'
         % (n_hinges, mass),
         '<mujoco model="b2w_z1">',
-        '  <compiler angle="radian" inertiafromgeom="false" autolimits="true"/>',
+        COMPILER_XML,
         '  <option timestep="0.0005" integrator="Euler" solver="Newton" cone="elliptic" jacobian="sparse"'
         ' iterations="50" tolerance="1e-10" gravity="0 0 -9.81"/>',
         '  <size njmax="500" nconmax="100" nuser_jnt="1"/>',
         '  <default>',
         '    <joint damping="0" frictionloss="0"/>',
         '    <geom contype="0" conaffinity="0"/>',
-        '    <default class="visual">',
-        '      <geom contype="0" conaffinity="0" group="1" mass="0"/>',
-        '    </default>',
-        '    <default class="wheel">',
-        '      <!-- only the tyres collide, and only with the environment (its geoms: contype 0, conaffinity 1) -->',
-        '      <geom contype="1" conaffinity="0" condim="3" friction="1.0 0.005 0.0001" solref="0.005 1"'
-        ' solimp="0.9 0.95 0.001" group="0" rgba="%s"/>' % RGBA['tyre'],
-        '    </default>',
-        '  </default>',
-    ]
+    ] + VISUAL_CLASS_XML + contact_class_xml(
+        'wheel', 'rgba="%s"' % RGBA['tyre'],
+        'only the tyres collide, and only with the environment (its geoms: contype 0, conaffinity 1)') + [
+        '  </default>']
 
 
 def generate():
@@ -403,21 +362,10 @@ def generate():
     o.append('  <worldbody>')
     body_xml(bodies, bodies[0], 4, o, base_z)
     o.append('  </worldbody>')
-    o.append('  <actuator>')
-    for j in hinges:
-        o.append('    <motor name="%s" joint="%s" gear="1" ctrllimited="true" ctrlrange="%s"/>'
-                 % (j['name'], j['name'], fmt([-j['effort'], j['effort']])))
-    o.append('  </actuator>')
-    o.append('  <sensor>')
-    o.append('    <framequat name="imu_quat" objtype="site" objname="imu"/>')
-    o.append('    <gyro name="imu_gyro" site="imu"/>')
-    o.append('    <accelerometer name="imu_acc" site="imu"/>')
-    o.append('  </sensor>')
-    o.append('  <keyframe>')
-    o.append('    <!-- B2W stand (thigh 0.8, calf -1.5), arms folded forward-down; the lowest tyre points at z = 0 -->')
-    o.append('    <key name="home" qpos="0 0 %s 1 0 0 0 %s"/>'
-             % (fmt([base_z], 12), ' '.join(fmt([home[j['name']]]) for j in hinges)))
-    o.append('  </keyframe>')
+    o += actuator_xml((j['name'], j['effort']) for j in hinges)
+    o += IMU_SENSOR_XML
+    o += home_keyframe_xml('B2W stand (thigh 0.8, calf -1.5), arms folded forward-down; the lowest tyre points at'
+                           ' z = 0', base_z, [home[j['name']] for j in hinges], z_digits=12)
     o.append('</mujoco>')
     return '\n'.join(o) + '\n'
 
@@ -439,31 +387,5 @@ def print_facts():
         len(hinges), sum(1 for j in hinges if j['range']), base_z))
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    here = os.path.dirname(os.path.abspath(__file__))
-    ap.add_argument('--out', default=os.path.join(here, '..', 'models', 'b2w_z1', 'b2w_z1.xml'))
-    ap.add_argument('--check', action='store_true',
-                    help='regenerate in memory, print the model facts, fail if the file at --out differs')
-    a = ap.parse_args()
-    text = generate()
-    if a.check:
-        print_facts()
-        try:
-            with open(a.out) as f:
-                same = f.read() == text
-        except OSError:
-            same = False
-        print('%s: %s' % (os.path.normpath(a.out), 'up to date' if same else 'DIFFERS from the generator'))
-        return 0 if same else 1
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    tmp = a.out + '.tmp'
-    with open(tmp, 'w') as f:
-        f.write(text)
-    os.replace(tmp, a.out)
-    print('wrote', os.path.normpath(a.out))
-    return 0
-
-
 if __name__ == '__main__':
-    sys.exit(main())
+    sys.exit(main(__file__, __doc__, 'models/b2w_z1/b2w_z1.xml', generate, print_facts))

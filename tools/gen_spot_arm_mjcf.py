@@ -11,7 +11,7 @@ this script never reads it and writes a 2.2.2 model with torque motors. The comm
 Usage:  python3 tools/gen_spot_arm_mjcf.py [--out PATH]   write the MJCF (default models/spot_arm/spot_arm.xml)
         python3 tools/gen_spot_arm_mjcf.py --check        regenerate in memory, fail if the file at --out differs;
                                                           prints mass, base height and foot centres at home
-Pure python3 standard library.
+Pure python3 standard library (helpers shared with the other generators: tools/mjcf_gen.py).
 
 Effort limits [N m] (modelling choice: the menagerie has none, its position servos carry placeholder ranges):
   legs   hx 45, hy 45: the hip actuators' limit of Isaac Lab's Spot model (isaac-sim/IsaacLab,
@@ -40,10 +40,15 @@ What differs from the menagerie model:
   - home keyframe: the menagerie's joint values (legs 0 1.04 -1.8, arm stowed 0 -3.14 3.06 0 0 0 0) with the base
     height computed here so that the lowest foot-sphere point is at z = 0.
 """
-import argparse
 import math
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # mjcf_gen.py, from any working directory
+sys.dont_write_bytecode = True  # no tools/__pycache__ left in the work tree
+from mjcf_gen import (COMPILER_XML, IMU_SENSOR_XML, VISUAL_CLASS_XML, actuator_xml,  # noqa: E402
+                      contact_class_xml, fmt, hinge_xml, home_keyframe_xml, identity, main, mmul, mvec,
+                      quat_attr, rot, vadd)
 
 # (body, parent, pos in parent [m], joint, axis, (lower, upper) [rad],
 #  (mass [kg], CoM [m], principal-axes quat (w x y z, not normalized, as typed), principal inertias [kg m^2]))
@@ -135,40 +140,9 @@ VISUALS = {
 
 
 # ---------------------------------------------------------------- small helpers (no numpy)
-def fmt(v, digits=10):
-    """Numbers as %g with `digits` significant digits, '-0' printed as '0'."""
-    out = []
-    for x in v:
-        s = '%.*g' % (digits, x)
-        out.append('0' if s == '-0' else s)
-    return ' '.join(out)
-
-
 def normalized(q):
     n = math.sqrt(sum(c * c for c in q))
     return [c / n for c in q]
-
-
-def rot_axis(axis, angle):
-    """Rotation matrix about a unit axis (Rodrigues)."""
-    x, y, z = axis
-    c, s = math.cos(angle), math.sin(angle)
-    t = 1.0 - c
-    return [[t * x * x + c, t * x * y - s * z, t * x * z + s * y],
-            [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
-            [t * x * z - s * y, t * y * z + s * x, t * z * z + c]]
-
-
-def mmul(a, b):
-    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-
-
-def mvec(a, v):
-    return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
-
-
-def vadd(a, b):
-    return [a[i] + b[i] for i in range(3)]
 
 
 def joint_kind(joint):
@@ -184,12 +158,11 @@ def children_of(parent):
 def fk(joint_q):
     """Pose (R, p) of every body in the base frame, and the total mass, for joint values {joint: q}.
     Body frames carry no rotation of their own (as in the menagerie): only the joints rotate."""
-    eye = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
-    poses = {'body': (eye, [0.0, 0.0, 0.0])}
+    poses = {'body': (identity(), [0.0, 0.0, 0.0])}
     mass = BASE[1][0]
     for (body, parent, pos, joint, axis, _, inertial) in BODIES:  # parents precede children in BODIES
         R0, p0 = poses[parent]
-        poses[body] = (mmul(R0, rot_axis(axis, joint_q.get(joint, 0.0))), vadd(p0, mvec(R0, pos)))
+        poses[body] = (mmul(R0, rot(axis, joint_q.get(joint, 0.0))), vadd(p0, mvec(R0, pos)))
         mass += inertial[0]
     return poses, mass
 
@@ -216,8 +189,7 @@ def home_base_height():
 # ---------------------------------------------------------------- MJCF writer
 def inertial_xml(inertial):
     m, com, quat, diag = inertial
-    q = normalized(quat)
-    qa = '' if abs(q[0] - 1.0) < 1e-15 else ' quat="%s"' % fmt(q, 12)
+    qa = quat_attr(normalized(quat), 12)
     return '<inertial pos="%s"%s mass="%s" diaginertia="%s"/>' % (fmt(com), qa, fmt([m]), fmt(diag))
 
 
@@ -235,7 +207,7 @@ def visual_xml(body):
 
 def joint_xml(joint, axis, rng):
     effort, vel, arm = ACTUATION[joint_kind(joint)]
-    return '<joint name="%s" axis="%s" range="%s" armature="%g" user="%g"/>' % (joint, fmt(axis), fmt(rng), arm, vel)
+    return hinge_xml(joint, axis, rng, arm, vel)
 
 
 def body_xml(parent, indent, out):
@@ -266,7 +238,7 @@ def header_xml():
         '     (commit 4035abd; BSD-3-Clause per its folder, notices in models/spot_arm/LICENSE).',
         '     Edit the generator, not this file. The robot alone: the simulator adds ground, lights and cameras. -->',
         '<mujoco model="spot_arm">',
-        '  <compiler angle="radian" inertiafromgeom="false" autolimits="true"/>',
+        COMPILER_XML,
         '  <option timestep="0.0005" integrator="Euler"/>',
         '  <size nuser_jnt="1"/>',
         '  <asset>',
@@ -275,39 +247,19 @@ def header_xml():
         '  </asset>',
         '  <default>',
         '    <geom contype="0" conaffinity="0"/>',
-        '    <default class="visual">',
-        '      <geom contype="0" conaffinity="0" group="1" mass="0"/>',
-        '    </default>',
-        '    <default class="foot">',
-        '      <!-- feet collide with the environment only (contype 1 & environment conaffinity 1);',
-        '           friction, solref, solimp as CENTAURO\'s wheels (models/centauro/centauro.xml) -->',
-        '      <geom contype="1" conaffinity="0" condim="3" friction="1.0 0.005 0.0001" solref="0.005 1"'
-        ' solimp="0.9 0.95 0.001" group="0" material="dark"/>',
-        '    </default>',
-        '  </default>',
-    ]
+    ] + VISUAL_CLASS_XML + contact_class_xml(
+        'foot', 'material="dark"',
+        'feet collide with the environment only (contype 1 & environment conaffinity 1);',
+        'friction, solref, solimp as CENTAURO\'s wheels (models/centauro/centauro.xml)') + [
+        '  </default>']
 
 
 def footer_xml(base_z):
     """Actuators (torque motors), IMU sensors and the home keyframe."""
-    o = ['  <actuator>']
-    for row in BODIES:
-        e = ACTUATION[joint_kind(row[3])][0]
-        o.append('    <motor name="%s" joint="%s" gear="1" ctrllimited="true" ctrlrange="%s"/>'
-                 % (row[3], row[3], fmt([-e, e])))
-    o += ['  </actuator>',
-          '  <sensor>',
-          '    <framequat name="imu_quat" objtype="site" objname="imu"/>',
-          '    <gyro name="imu_gyro" site="imu"/>',
-          '    <accelerometer name="imu_acc" site="imu"/>',
-          '  </sensor>',
-          '  <keyframe>',
-          '    <!-- menagerie home posture (legs 0 1.04 -1.8, arm stowed), lowest foot-sphere point at z = 0 -->',
-          '    <key name="home" qpos="0 0 %s 1 0 0 0 %s"/>'
-          % (fmt([base_z], 10), fmt([home_joints()[row[3]] for row in BODIES])),
-          '  </keyframe>',
-          '</mujoco>']
-    return o
+    home = home_joints()
+    return (actuator_xml((row[3], ACTUATION[joint_kind(row[3])][0]) for row in BODIES) + IMU_SENSOR_XML +
+            home_keyframe_xml('menagerie home posture (legs 0 1.04 -1.8, arm stowed), lowest foot-sphere point at'
+                              ' z = 0', base_z, [home[row[3]] for row in BODIES]) + ['</mujoco>'])
 
 
 def generate():
@@ -333,34 +285,5 @@ def print_facts():
         print('  %s centre (base frame) %s' % (name, fmt(c, 6)))
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    here = os.path.dirname(os.path.abspath(__file__))
-    ap.add_argument('--out', default=os.path.join(here, '..', 'models', 'spot_arm', 'spot_arm.xml'))
-    ap.add_argument('--check', action='store_true', help='fail if the file at --out differs from a regeneration')
-    a = ap.parse_args()
-    text = generate()
-    if a.check:
-        print_facts()
-        try:
-            with open(a.out) as f:
-                same = f.read() == text
-        except OSError as e:
-            print('cannot read %s: %s' % (a.out, e), file=sys.stderr)
-            return 1
-        if not same:
-            print('%s differs from the generator output: run tools/gen_spot_arm_mjcf.py' % a.out, file=sys.stderr)
-            return 1
-        print('%s is up to date' % os.path.normpath(a.out))
-        return 0
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    tmp = a.out + '.tmp'
-    with open(tmp, 'w') as f:
-        f.write(text)
-    os.replace(tmp, a.out)
-    print('wrote', os.path.normpath(a.out))
-    return 0
-
-
 if __name__ == '__main__':
-    sys.exit(main())
+    sys.exit(main(__file__, __doc__, 'models/spot_arm/spot_arm.xml', generate, print_facts))
