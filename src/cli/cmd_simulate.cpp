@@ -31,6 +31,7 @@ struct SimulateArgs {
   bool json = false;
   std::map<std::string, std::string> options;  // scenario options
   std::vector<std::string> selects;            // --select key=value (a grid point of a sweep database)
+  std::string robot;                           // --robot: the key robot.name, after every --set
 };
 
 nlohmann::json toJson(const sim::RunSummary& s, const std::string& scenario) {
@@ -102,6 +103,7 @@ int runSimulate(const sim::Scenario& scenario, const SimulateArgs& a) {
     os << "duration=" << a.duration;
     overrides.push_back(os.str());
   }
+  if (!a.robot.empty()) overrides.push_back("robot.name=" + a.robot);
   if (!a.snapshot.empty() && a.at < 0.0) throw InputError("--snapshot needs --at T (seconds)");
   sim::RunOutputs outputs;
   outputs.log_path = a.out;
@@ -147,6 +149,9 @@ const Registrar registrar{Command{
         s->add_option("--snapshot", args->snapshot, "render one frame to a PNG (with --at)");
         s->add_option("--at", args->at, "snapshot time [s]")->check(finiteRange(0.0, 3600.0));
         s->add_flag("--json", args->json, "print one JSON summary object as the last line of stdout");
+        s->add_option("--robot", args->robot,
+                      "the robot: a shipped one (models/NAME/) or a robot.yaml (docs/robots.md); default: the key "
+                      "robot.name (centauro); the jumps run CENTAURO only so far");
         const bool replays_primitive = std::any_of(scenario.options.begin(), scenario.options.end(),
                                                    [](const sim::ScenarioOption& o) { return o.name == "primitive"; });
         if (replays_primitive) {

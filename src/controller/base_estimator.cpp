@@ -17,7 +17,8 @@ void BaseEstimator::init(std::shared_ptr<const RobotModelDescription> model, con
   model_ = std::make_unique<RobotModel>(std::move(model));
   const std::string& mjcf_path = model_->path();
   for (int k = 0; k < kWheels; ++k) {
-    const std::string wheel = "wheel_" + std::to_string(k + 1), centre = "wheel_centre_" + std::to_string(k + 1);
+    const std::string& wheel = params.wheel_bodies[k];
+    const std::string& centre = params.wheel_centres[k];
     f_wheel_[k] = model_->frameId(wheel);
     f_centre_[k] = model_->frameId(centre);
     if (f_wheel_[k] < 0 || f_centre_[k] < 0)

@@ -32,20 +32,24 @@
 #include <string>
 
 #include "controller/robot_interface.hpp"
+#include "controller/robot_frames.hpp"
 #include "model/robot_model.hpp"
 
 namespace centaur {
 
 struct BaseEstimatorParams {
   double wheel_radius = 0.078;  ///< [m] rolling radius of the wheels, in (0, 0.5]
+  /// Per foot (FL, FR, RL, RR): the body that rolls or rests on the ground and the site at its centre.
+  std::array<std::string, 4> wheel_bodies = RobotFrames().contact_bodies;
+  std::array<std::string, 4> wheel_centres = RobotFrames().foot_centres;
 };
 
 class BaseEstimator {
  public:
   static constexpr int kWheels = 4;
 
-  /// Builds the private kinematic model from the MJCF (needs bodies pelvis, wheel_1..4 and sites
-  /// wheel_centre_1..4); throws InputError naming the file. Allocates.
+  /// Builds the private kinematic model from the MJCF (needs the bodies and sites of params.wheel_bodies and
+  /// params.wheel_centres); throws InputError naming the file. Allocates.
   void init(const std::string& mjcf_path, const BaseEstimatorParams& params = BaseEstimatorParams());
   /// The same on a model description the caller shares (no parse).
   void init(std::shared_ptr<const RobotModelDescription> model, const BaseEstimatorParams& params = BaseEstimatorParams());

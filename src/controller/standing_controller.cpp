@@ -1,5 +1,8 @@
 #include "controller/standing_controller.hpp"
 
+#include <fnmatch.h>
+
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -20,6 +23,18 @@ const char* jointGainsDefaultsYaml() {
 }
 
 void readJointGains(YamlReader& g, StandingParams& p) {
+  if (!p.frames.gain_patterns.empty()) {  // the robot's own groups: each needs its gains, no other key is allowed
+    for (const auto& gp : p.frames.gain_patterns) {
+      if (!g.has(gp.group)) g.fail(gp.group, "missing: the robot's impedance group needs {kp, kd}");
+      JointGains& gains = p.group_gains[gp.group];
+      auto c = g.child(gp.group);
+      c.get("kp", gains.kp, 0.0, 1e5);
+      c.get("kd", gains.kd, 0.0, 1e3);
+      c.finish();
+    }
+    g.finish();
+    return;
+  }
   for (auto& [name, gains] : std::vector<std::pair<const char*, JointGains*>>{
            {"leg", &p.leg}, {"ankle_pitch", &p.ankle_pitch}, {"ankle_yaw", &p.ankle_yaw}, {"wheel", &p.wheel},
            {"torso", &p.torso}, {"arm", &p.arm}, {"wrist", &p.wrist}, {"other", &p.other}}) {
@@ -36,6 +51,15 @@ bool contains(const std::string& s, const char* part) { return s.find(part) != s
 }  // namespace
 
 JointGains gainsFor(const std::string& name, const StandingParams& p) {
+  for (const auto& gp : p.frames.gain_patterns) {
+    for (const auto& pattern : gp.patterns) {
+      if (::fnmatch(pattern.c_str(), name.c_str(), 0) == 0) {
+        const auto it = p.group_gains.find(gp.group);
+        return it == p.group_gains.end() ? JointGains{} : it->second;
+      }
+    }
+  }
+  if (!p.frames.gain_patterns.empty()) return JointGains{};  // no group matches: no impedance
   if (contains(name, "hip_yaw") || contains(name, "hip_pitch") || contains(name, "knee_pitch")) return p.leg;
   if (contains(name, "ankle_pitch")) return p.ankle_pitch;
   if (contains(name, "ankle_yaw")) return p.ankle_yaw;
@@ -72,15 +96,15 @@ void StandingParams::read(YamlReader& r) {
 StandingController::StandingController(const std::string& mjcf_path, const StandingParams& params)
     : params_(params), model_(std::make_unique<RobotModel>(mjcf_path)) {
   n_ = model_->numJoints();
-  if (params_.wheel_frames.size() != 4) throw InputError(mjcf_path + ": the standing controller needs 4 wheel frames");
+  const RobotFrames& frames = params_.frames;
   for (int k = 0; k < 4; ++k) {
-    wheel_ids_[k] = model_->frameId(params_.wheel_frames[k]);
-    if (wheel_ids_[k] < 0) throw InputError(mjcf_path + ": frame '" + params_.wheel_frames[k] + "' not found");
+    wheel_ids_[k] = model_->frameId(frames.contact_bodies[k]);
+    if (wheel_ids_[k] < 0) throw InputError(mjcf_path + ": frame '" + frames.contact_bodies[k] + "' not found");
   }
-  const int imu = model_->frameId(params_.imu_frame);
-  const int base = model_->frameId(params_.base_frame);
+  const int imu = model_->frameId(frames.imu);
+  const int base = model_->frameId(frames.base);
   if (imu < 0 || base < 0) {
-    throw InputError(mjcf_path + ": frames '" + params_.imu_frame + "' and '" + params_.base_frame + "' are required");
+    throw InputError(mjcf_path + ": frames '" + frames.imu + "' and '" + frames.base + "' are required");
   }
   q_model_.setZero(model_->nq());
   v_model_.setZero(model_->nv());
@@ -107,6 +131,8 @@ StandingController::StandingController(const std::string& mjcf_path, const Stand
   if (params_.use_base_estimator) {
     BaseEstimatorParams ep;
     ep.wheel_radius = params_.wheel_radius;
+    ep.wheel_bodies = frames.contact_bodies;
+    ep.wheel_centres = frames.foot_centres;
     estimator_.init(model_->description(), ep);
   }
   for (int k = 0; k < 4; ++k) {
@@ -124,8 +150,11 @@ void StandingController::start(const RobotState& state, JointCommand& command) {
   command.resize(n_);
   // Wheels (continuous) hold their initial angle; everything else goes to home.
   const auto& names = model_->jointNames();
+  const auto& wheels = params_.frames.wheel_joints;
   for (int i = 0; i < n_; ++i) {
-    if (contains(names[static_cast<std::size_t>(i)], "wheel")) q_home_[i] = state.q[i];
+    const std::string& name = names[static_cast<std::size_t>(i)];
+    const bool wheel = wheels.empty() ? contains(name, "wheel") : std::find(wheels.begin(), wheels.end(), name) != wheels.end();
+    if (wheel) q_home_[i] = state.q[i];
   }
   tick(state, command);
 }
@@ -150,7 +179,8 @@ void StandingController::computeFeedforward(const RobotState& state, JointComman
   model_->gravityForces(g_);
   for (int k = 0; k < 4; ++k) {
     const Eigen::Isometry3d w_T_wheel = model_->framePose(wheel_ids_[k]);
-    const Eigen::Vector3d w_contact = w_T_wheel.translation() - params_.wheel_radius * Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d w_centre = w_T_wheel * params_.frames.centre_offsets[k];  // the origin for a zero offset
+    const Eigen::Vector3d w_contact = w_centre - params_.wheel_radius * Eigen::Vector3d::UnitZ();
     const Eigen::Vector3d f_contact = w_T_wheel.inverse() * w_contact;
     model_->pointJacobian(wheel_ids_[k], f_contact, J_[k]);
     A_.block<6, 3>(0, 3 * k) = J_[k].leftCols<6>().transpose();

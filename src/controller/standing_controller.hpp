@@ -17,6 +17,7 @@
 //      kp/kd per joint group.
 // tick() never allocates nor throws (all workspaces are sized in the constructor / start()).
 #include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@
 
 #include "common/yaml_reader.hpp"
 #include "controller/base_estimator.hpp"
+#include "controller/robot_frames.hpp"
 #include "controller/robot_interface.hpp"
 #include "model/robot_model.hpp"
 
@@ -52,9 +54,9 @@ struct StandingParams {
   double tangential_weight = 100.0;  ///< [-] w_t, cost of tangential vs normal wheel forces
   double friction = 0.6;             ///< [-] mu assumed for the cone projection
   double wheel_radius = 0.078;       ///< [m]
-  std::vector<std::string> wheel_frames = {"wheel_1", "wheel_2", "wheel_3", "wheel_4"};
-  std::string imu_frame = "imu";
-  std::string base_frame = "pelvis";
+  RobotFrames frames;                ///< the robot's names (not configuration keys: from its description)
+  /// Per impedance group of frames.gain_patterns (key controller.gains.<group>), when there are patterns.
+  std::map<std::string, JointGains> group_gains;
 
   /// Documented defaults of the `controller:` section (YAML with units and ranges).
   static const char* defaultsYaml();

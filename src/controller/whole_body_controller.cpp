@@ -47,6 +47,11 @@ WholeBodyController::WholeBodyController(const std::string& mjcf_path, const Who
   n_ = model_meas_->numJoints();
   nq_ = model_meas_->nq();
   nv_ = model_meas_->nv();
+  const RobotFrames& f = params_.frames;
+  params_.estimator.wheel_bodies = params_.detector.wheel_bodies = params_.force.wheel_bodies = f.contact_bodies;
+  params_.estimator.wheel_centres = params_.detector.wheel_centres = params_.force.wheel_centres = f.foot_centres;
+  params_.estimator.wheel_radius = params_.detector.wheel_radius = params_.force.wheel_radius = f.foot_radius[0];
+  params_.detector.leg_joints = f.leg_joints;
   estimator_.init(model_meas_->description(), params_.estimator);
   detector_.init(*model_meas_, params_.detector);
   force_.init(*model_meas_, params_.force);

@@ -35,6 +35,7 @@
 #include "controller/base_estimator.hpp"
 #include "controller/contact_detector.hpp"
 #include "controller/force_distribution.hpp"
+#include "controller/robot_frames.hpp"
 #include "controller/robot_interface.hpp"
 #include "controller/standing_controller.hpp"
 #include "model/robot_model.hpp"
@@ -58,6 +59,10 @@ struct WholeBodyParams {
   ForceDistributionParams force;
   ContactDetectorParams detector;
   BaseEstimatorParams estimator;
+  /// The robot's names and foot radii: the constructor gives them to the estimator, the contact detector and the
+  /// force distribution (their own name and radius fields are overwritten). Set impedance.frames alike before
+  /// reading the gains.
+  RobotFrames frames;
   /// Names of the stack's tasks the reference hooks address (a missing name makes that hook a no-op).
   std::array<std::string, 4> foot_tasks = {"wheel_1", "wheel_2", "wheel_3", "wheel_4"};
   std::string pelvis_task = "pelvis", momentum_task = "ang_mom", posture_task = "posture";

@@ -43,8 +43,21 @@ bool sameInertia(const mjModel* a, const mjModel* b) {
   return true;
 }
 
-// The same file with <compiler discardvisual="true"/> as the first child of <mujoco>, served to MuJoCo from a
-// virtual file system under the file's own name (so that relative includes and assets still resolve).
+// `text` served to MuJoCo from a virtual file system as the file `path` (its folder still resolves relative
+// includes and assets from the disk); the parser's message in `err`.
+ModelPtr loadText(const std::string& path, const std::string& text, char* err, int err_size) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(), static_cast<int>(text.size())) != 0) return nullptr;
+  const int i = mj_findFileVFS(vfs.get(), name.c_str());
+  if (i < 0) return nullptr;
+  std::memcpy(vfs->filedata[i], text.data(), text.size());
+  return ModelPtr(mj_loadXML(path.c_str(), vfs.get(), err, err_size));
+}
+
+// The same file with <compiler discardvisual="true"/> as the first child of <mujoco>.
 ModelPtr loadWithoutVisuals(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream buffer;
@@ -54,16 +67,14 @@ ModelPtr loadWithoutVisuals(const std::string& path) {
   const std::size_t end = tag == std::string::npos ? tag : text.find('>', tag);
   if (end == std::string::npos || text[end - 1] == '/') return nullptr;
   text.insert(end + 1, "<compiler discardvisual=\"true\"/>");
-  const std::size_t slash = path.find_last_of('/');
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
-  mj_defaultVFS(vfs.get());
-  if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(), static_cast<int>(text.size())) != 0) return nullptr;
-  const int i = mj_findFileVFS(vfs.get(), name.c_str());
-  if (i < 0) return nullptr;
-  std::memcpy(vfs->filedata[i], text.data(), text.size());
   char err[1000] = "";
-  return ModelPtr(mj_loadXML(path.c_str(), vfs.get(), err, sizeof(err)));
+  return loadText(path, text, err, sizeof(err));
+}
+
+std::string oneLine(std::string why) {
+  while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+  for (char& c : why) c = c == '\n' ? ' ' : c;
+  return why;
 }
 
 // MuJoCo's default handlers append to MUJOCO_LOG.TXT in the working directory, and its default error handler
@@ -88,15 +99,26 @@ mjModel_* loadMjcf(const std::string& path, bool discard_visual) {
   char err[1000] = "";
   ModelPtr full(mj_loadXML(path.c_str(), nullptr, err, sizeof(err)));
   if (!full) {
-    std::string why(err);
-    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
-    for (char& c : why) c = c == '\n' ? ' ' : c;
-    throw InputError(excerpt(path, 4 * kMaxExcerpt) + ": cannot load the MJCF model: " + excerpt(why, 400));
+    throw InputError(excerpt(path, 4 * kMaxExcerpt) + ": cannot load the MJCF model: " + excerpt(oneLine(err), 400));
   }
   if (!discard_visual) return full.release();
   ModelPtr lean = loadWithoutVisuals(path);
   if (!lean || !sameInertia(lean.get(), full.get())) return full.release();
   return lean.release();
+}
+
+mjModel_* loadMjcfInScene(const std::string& path, const std::string& scene_xml) {
+  installMujocoHandlers();
+  requireRegularFile(path, "an MJCF model (MuJoCo XML)");
+  const std::size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+  char err[1000] = "";
+  ModelPtr m = loadText(folder + "/centaur-scene.xml", scene_xml, err, sizeof(err));
+  if (!m) {
+    throw InputError(excerpt(path, 4 * kMaxExcerpt) + ": cannot load the MJCF model in centaur's scene: " +
+                     excerpt(oneLine(err), 400));
+  }
+  return m.release();
 }
 
 }  // namespace centaur

@@ -17,6 +17,11 @@ namespace centaur {
 /// opens it.
 mjModel_* loadMjcf(const std::string& path, bool discard_visual);
 
+/// The robot-alone MJCF `path` inside a scene: `scene_xml` is an MJCF that includes the robot by its file name
+/// (<include file="NAME.xml"/>) and adds the world around it; it is read as a file in the robot's folder. Visual
+/// geoms are kept. InputError naming the robot's file if MuJoCo cannot load the pair.
+mjModel_* loadMjcfInScene(const std::string& path, const std::string& scene_xml);
+
 /// MuJoCo's process-wide message handlers: warnings to stderr, errors as RuntimeError, never MUJOCO_LOG.TXT in the
 /// working directory nor a prompt on stdin. loadMjcf() installs them; idempotent.
 void installMujocoHandlers();

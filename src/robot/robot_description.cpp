@@ -234,6 +234,9 @@ RobotDescription readRobotDescription(const std::string& path) {
   d.mjcf_path = mjcf.front() == '/' ? mjcf : folderOf(d.yaml_path) + "/" + mjcf;
   d.base = requireString(r, "base");
   d.home = requireString(r, "home");
+  std::string scene = "centaur";
+  r.get("scene", scene, {"centaur", "mjcf"});
+  d.scene_in_mjcf = scene == "mjcf";
   if (!r.has("imu")) r.fail("imu", "is required: {site, orientation, gyro, accelerometer}");
   {
     YamlReader imu = r.child("imu");

@@ -67,6 +67,8 @@ struct RobotDescription {
   std::string mjcf_path;  ///< absolute or relative to the working directory (resolved from robot.yaml's folder)
   std::string base;       ///< body with the free joint
   std::string home;       ///< keyframe of the home posture
+  bool scene_in_mjcf = false;  ///< key `scene`: `mjcf` = the MJCF carries its own ground and wall (CENTAURO's
+                               ///< paper-era file); `centaur` (default) = it is the robot alone, centaur adds them
   ImuSpec imu;
   std::array<FootSpec, 4> feet;  ///< FL, FR, RL, RR
   std::vector<std::string> torso_joints;

@@ -157,7 +157,10 @@ RobotFacts deriveFacts(const RobotDescription& d, const MjcfView& v, std::vector
   RobotFacts f;
   f.total_mass = m->body_subtreemass[v.base];
   for (int j = 0; j < m->njnt; ++j) {
-    if (m->jnt_type[j] == mjJNT_HINGE) f.joint_names.emplace_back(mj_id2name(m, mjOBJ_JOINT, j));
+    if (m->jnt_type[j] != mjJNT_HINGE) continue;
+    f.joint_names.emplace_back(mj_id2name(m, mjOBJ_JOINT, j));
+    const int leg = v.leg_of_body[m->jnt_bodyid[j]];
+    if (leg >= 0) f.leg_joints[leg].push_back(f.joint_names.back());
   }
   homeKinematics(d, v, f, problems);
   model::TemplateParams& P = f.template_params;
@@ -170,6 +173,9 @@ RobotFacts deriveFacts(const RobotDescription& d, const MjcfView& v, std::vector
     legs += f.leg_mass[k];
     P.hip[k] = Vec3C(v.d->xpos + 3 * v.root[k]);
     f.b_p_foot[k] = Vec3C(v.d->site_xpos + 3 * v.centre[k]);
+    const Mat3C R(v.d->xmat + 9 * v.contact[k]);
+    f.centre_in_contact[k] = R.transpose() * (f.b_p_foot[k] - Vec3C(v.d->xpos + 3 * v.contact[k]));
+    if (f.centre_in_contact[k].norm() < 1e-9) f.centre_in_contact[k].setZero();  // a site at the origin: exactly
     f.foot_radius[k] = v.radius[k];
   }
   P.foot_mass = legs / 4.0;

@@ -41,6 +41,9 @@ struct RobotFacts {
   std::array<double, 4> leg_mass{};            ///< [kg] each leg's subtree (the template uses their mean)
   std::array<Eigen::Vector3d, 4> b_p_foot{};   ///< [m] foot centres at home, B
   std::array<double, 4> foot_radius{};         ///< [m] contact point below the centre
+  std::array<Eigen::Vector3d, 4> centre_in_contact{};  ///< [m] each foot centre in its contact body's frame (0 when
+                                                       ///< within 1 nm of the body's origin)
+  std::array<std::vector<std::string>, 4> leg_joints;  ///< each leg's hinges, root to foot (qpos order)
   double pitch_inertia = 0.0;                  ///< [kg m^2] the whole robot's, about its CoM at home (y axis)
   std::vector<ArmFacts> arms;                  ///< as RobotDescription::arms
   std::vector<double> raibert_directions;      ///< sign of each raibert joint's pitch authority

@@ -15,8 +15,8 @@ double pitchOf(const Eigen::Quaterniond& q) { return pitchFromQuaternion(q.w(), 
 JumpObserver::JumpObserver(const MujocoRobot& robot, const JumpObserverParams& params) : p_(params) {
   const mjModel* m = robot.model();
   wall_body_ = mj_name2id(m, mjOBJ_BODY, "wall");
-  rear_left_ = mj_name2id(m, mjOBJ_BODY, "wheel_3");
-  rear_right_ = mj_name2id(m, mjOBJ_BODY, "wheel_4");
+  rear_left_ = mj_name2id(m, mjOBJ_BODY, p_.rear_left.c_str());
+  rear_right_ = mj_name2id(m, mjOBJ_BODY, p_.rear_right.c_str());
 }
 
 void JumpObserver::observe(const MujocoRobot& robot, const RobotState& state, const JointCommand&) {

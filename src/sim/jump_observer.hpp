@@ -29,6 +29,7 @@ struct JumpObserverParams {
   double min_flight = 0.05;            ///< [s]
   double max_final_pitch_deg = 10.0;   ///< [deg]
   double max_height_error = 0.05;      ///< [m]
+  std::string rear_left = "wheel_3", rear_right = "wheel_4";  ///< the rear feet's contact bodies (RL, RR)
 };
 
 class JumpObserver final : public RunObserver {

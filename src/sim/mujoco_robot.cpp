@@ -15,7 +15,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 }
 
 MujocoRobot::MujocoRobot(const SimSettings& settings) : settings_(settings), rng_(settings.seed) {
-  m_ = loadMjcf(settings_.model_path, !settings_.visual_geoms);
+  m_ = settings_.scene_xml.empty() ? loadMjcf(settings_.model_path, !settings_.visual_geoms)
+                                   : loadMjcfInScene(settings_.model_path, settings_.scene_xml);
   configureModel();
   d_ = mj_makeData(m_);
   readActuators();
@@ -113,9 +114,9 @@ void MujocoRobot::findBaseAndSensors() {
       break;
     }
   }
-  sensor_quat_ = mj_name2id(m_, mjOBJ_SENSOR, "imu_quat");
-  sensor_gyro_ = mj_name2id(m_, mjOBJ_SENSOR, "imu_gyro");
-  sensor_acc_ = mj_name2id(m_, mjOBJ_SENSOR, "imu_acc");
+  sensor_quat_ = mj_name2id(m_, mjOBJ_SENSOR, settings_.imu_orientation.c_str());
+  sensor_gyro_ = mj_name2id(m_, mjOBJ_SENSOR, settings_.imu_gyro.c_str());
+  sensor_acc_ = mj_name2id(m_, mjOBJ_SENSOR, settings_.imu_accelerometer.c_str());
   key_ = settings_.keyframe.empty() ? -1 : mj_name2id(m_, mjOBJ_KEY, settings_.keyframe.c_str());
 }
 

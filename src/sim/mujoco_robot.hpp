@@ -57,6 +57,8 @@ struct PushSettings {
 
 struct SimSettings {
   std::string model_path;          ///< MJCF file
+  std::string scene_xml;           ///< "" = the MJCF carries its world; else the scene that includes it (sim/robot_setup.hpp)
+  std::string imu_orientation = "imu_quat", imu_gyro = "imu_gyro", imu_accelerometer = "imu_acc";  ///< IMU sensors
   double timestep = 0.0005;        ///< [s] physics step (overrides the MJCF's)
   int control_decimation = 2;      ///< physics steps per controller call (2 -> 1 kHz at 2 kHz physics)
   std::string solver = "model";    ///< contact solver: newton, cg, pgs, or model (keep the MJCF's)

@@ -21,17 +21,18 @@ namespace centaur::sim {
 
 namespace {
 
-data::Primitive loadOrPlan(const std::string& name, const std::string& file, const std::string& group) {
+data::Primitive loadOrPlan(const std::string& name, const std::string& file, const std::string& group,
+                           const std::string& robot_name) {
   if (!group.empty() && file.empty()) throw InputError("--primitive-group " + group + ": needs --primitive F.h5");
   if (!file.empty()) {
     const std::string g = group.empty() ? name : group;
     data::Primitive p = data::readPrimitive(file, g);
-    data::requirePlannedFor(p, robot::kDefaultRobot, file + ", group '" + g + "'");  // the simulated robot
+    data::requirePlannedFor(p, robot_name, file + ", group '" + g + "'");
     return p;
   }
   std::fprintf(stderr, "planning %s with the default settings (give --primitive F.h5 to reuse a plan) ...\n",
                name.c_str());
-  const planner::JumpConfig cfg = planner::loadJumpConfig(name, "", {});
+  const planner::JumpConfig cfg = planner::loadJumpConfig(name, "", {"robot=" + robot_name});
   const planner::JumpProblem problem(cfg);
   const planner::SolveResult result = problem.solve(false);
   if (!result.info.solved()) {
@@ -56,15 +57,22 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
                {"primitive-group", "group of the --primitive file to replay (default: the one named like the jump)",
                 "", {}, false}};
   s.make_controller = [name](ScenarioContext& ctx) -> std::unique_ptr<Controller> {
+    if (ctx.options.at("stabilizer") == "ocp" && ctx.config.robot_name != robot::kDefaultRobot) {
+      throw InputError("simulate " + name + " --stabilizer ocp: robot '" + ctx.config.robot_name +
+                       "': the arm-flywheel plan is for CENTAURO's 7-DoF arm only so far (none, raibert, angmom run "
+                       "every robot)");
+    }
     OnlineStageInputs in;
     in.model_path = ctx.config.robot.model_path;
+    in.frames = ctx.config.frames;
     in.dt = ctx.robot.controlPeriodSeconds();
     in.stabilizer = ctx.options.at("stabilizer");
     in.flywheel_file = ctx.options.at("flywheel");
     in.flywheel_fallback = defaultArmFlywheel;
     const std::string file = ctx.options.at("primitive");
     const std::string group = ctx.options.at("primitive-group");
-    in.primitive = [name, file, group] { return loadOrPlan(name, file, group); };
+    const std::string robot_name = ctx.config.robot_name;
+    in.primitive = [name, file, group, robot_name] { return loadOrPlan(name, file, group, robot_name); };
     auto controller = makeOnlineController(name, ctx.controller_config, in);
     const auto& jump = static_cast<const JumpController&>(*controller);
     if (jump.wholeBody().ikModel().jointNames() != ctx.robot.jointNames()) {
@@ -82,6 +90,8 @@ Scenario jumpScenario(const std::string& name, JumpKind kind, double duration, c
   s.make_observer = [kind](ScenarioContext& ctx) -> std::unique_ptr<RunObserver> {
     JumpObserverParams p;
     p.kind = kind;
+    p.rear_left = ctx.config.robot.contact_bodies[2];
+    p.rear_right = ctx.config.robot.contact_bodies[3];
     const YAML::Node settle = ctx.config.effective["controller"]["settle_time"];
     p.primitive_start = settle ? settle.as<double>() : 0.5;
     return std::make_unique<JumpObserver>(ctx.robot, p);

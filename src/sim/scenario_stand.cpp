@@ -14,6 +14,7 @@ Scenario standScenario() {
   s.make_controller = [](ScenarioContext& ctx) -> std::unique_ptr<Controller> {
     OnlineStageInputs in;
     in.model_path = ctx.config.robot.model_path;
+    in.frames = ctx.config.frames;
     in.dt = ctx.robot.controlPeriodSeconds();
     auto controller = makeOnlineController("stand", ctx.controller_config, in);
     if (static_cast<const StandingController&>(*controller).model().jointNames() != ctx.robot.jointNames()) {

@@ -1,10 +1,12 @@
 #include "sim/sim_config.hpp"
 
+#include "sim/robot_setup.hpp"
+
 namespace centaur::sim {
 
 const char* const kSimConfigDefaults = R"(# centaur simulate: scenario configuration (defaults). Units SI; [lo, hi] = allowed range.
 duration: 10.0            # [s] simulated time, [0.001, 3600]
-model: ""                 # MJCF file; "" = <source>/models/centauro/centauro.xml
+model: ""                 # MJCF file; "" = the robot's (robot.name)
 physics:
   timestep: 0.0005        # [s] physics step (2 kHz), [1e-5, 0.01]
   control_decimation: 2   # physics steps per controller call (2 -> 1 kHz), [1, 100]
@@ -23,7 +25,8 @@ sensors:
     gyro: 0.0             # [rad/s] IMU angular velocity, [0, 10]
     acc: 0.0              # [m/s^2] IMU specific force, [0, 100]
     orientation: 0.0      # [rad] IMU orientation, [0, 1]
-robot:                    # the simulated robot's deviation from its model; the controller keeps the nominal model
+robot:                    # the simulated robot and its deviation from its model; the controller keeps the nominal model
+  name: centauro          # a shipped robot (models/NAME/) or a robot.yaml (docs/robots.md); its layer comes first
   mass_scale: 1.0         # [-] every robot body's mass and inertia multiplied by this, [0.5, 2]
   com_offset: [0.0, 0.0, 0.0]  # [m] shift of the whole robot's CoM (pelvis frame), each in [-0.1, 0.1]
 push:                     # an external push: a constant force at one body's CoM during a time window
@@ -90,6 +93,7 @@ SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
   }
   {
     auto b = r.child("robot");
+    b.get("name", c.robot_name);
     b.get("mass_scale", c.robot.mass_scale, 0.5, 2.0);
     Eigen::VectorXd offset = c.robot.com_offset;
     b.get("com_offset", offset, -0.1, 0.1);
@@ -138,16 +142,42 @@ SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
 
 SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string& file,
                         const std::vector<std::string>& overrides, const std::vector<std::string>& node_sections) {
-  YAML::Node node = loadYamlString(kSimConfigDefaults, "<simulation defaults>");
-  if (!scenario_defaults.empty()) node = mergeYaml(node, loadYamlString(scenario_defaults, "<scenario defaults>"));
-  std::string label = "<defaults>";
-  if (!file.empty()) {
-    node = mergeYaml(node, loadYamlFile(file));
-    label = file;
-  }
-  for (const auto& o : overrides) applyOverride(node, o);
+  YAML::Node base = loadYamlString(kSimConfigDefaults, "<simulation defaults>");
+  if (!scenario_defaults.empty()) base = mergeYaml(base, loadYamlString(scenario_defaults, "<scenario defaults>"));
+  const YAML::Node user_file = file.empty() ? YAML::Node(YAML::NodeType::Map) : loadYamlFile(file);
+  auto userLayers = [&](YAML::Node node) {
+    node = mergeYaml(node, user_file);
+    for (const auto& o : overrides) applyOverride(node, o);
+    return node;
+  };
+  // The robot is a key of the configuration: read it from the user's layers, then put its layer between the
+  // defaults and the user's layers (its impedance groups replace the defaults' controller.gains).
+  const YAML::Node name = userLayers(YAML::Clone(base))["robot"]["name"];
+  std::string label = file.empty() ? "<defaults>" : file;
   if (!overrides.empty()) label += (file.empty() ? " with --set" : " (with --set)");
-  return parseSimConfig(node, file.empty() && overrides.empty() ? "<defaults>" : label, node_sections);
+  if (!name || !name.IsScalar() || name.Scalar().empty()) throw InputError(label, "robot.name", "expected a robot's name or path");
+  SimRobot robot;
+  try {
+    robot = loadSimRobot(name.Scalar());
+  } catch (const InputError& e) {
+    throw InputError(label, "robot.name", e.what());
+  }
+  const YAML::Node layer = simRobotLayer(robot, base);
+  const YAML::Node& cbase = base;  // const look-ups: yaml-cpp's non-const operator[] inserts the key
+  const YAML::Node gains = layer["controller"] ? layer["controller"]["gains"] : YAML::Node();
+  if (gains.IsDefined() && !gains.IsNull() && cbase["controller"]) base["controller"].remove("gains");
+  SimConfig c = parseSimConfig(userLayers(mergeYaml(base, layer)), label, node_sections);
+  c.robot_name = robot.description.name;
+  c.robot_hash = robot.description.hash;
+  c.frames = robot.frames;
+  if (YAML::Node m = c.effective["model"]; !m || m.Scalar().empty()) c.robot.model_path = robot.description.mjcf_path;
+  if (!robot.description.scene_in_mjcf) c.robot.scene_xml = sceneXml(robot.description);
+  c.robot.keyframe = robot.description.home;
+  c.robot.imu_orientation = robot.description.imu.orientation;
+  c.robot.imu_gyro = robot.description.imu.gyro;
+  c.robot.imu_accelerometer = robot.description.imu.accelerometer;
+  for (int k = 0; k < 4; ++k) c.robot.contact_bodies[k] = robot.description.feet[k].contact;
+  return c;
 }
 
 YamlReader controllerSection(const SimConfig& config) {

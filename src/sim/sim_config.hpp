@@ -8,6 +8,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "common/yaml_reader.hpp"
+#include "controller/robot_frames.hpp"
 #include "sim/mujoco_robot.hpp"
 
 namespace centaur::sim {
@@ -32,6 +33,9 @@ struct OutcomeSettings {
 struct SimConfig {
   double duration = 10.0;   ///< [s]
   SimSettings robot;        ///< physics, world, sensors
+  std::string robot_name = "centauro";  ///< key robot.name: the description's name (robot/)
+  std::string robot_hash;               ///< its description's hash
+  RobotFrames frames;                   ///< the names the online stage needs (from the description)
   RenderSettings render;
   OutcomeSettings outcome;
   int log_decimation = 1;   ///< log every N-th control period

@@ -14,7 +14,7 @@ const char* AngmomParams::defaultsYaml() {
 
 void AngmomParams::read(YamlReader& r) { r.get("gain", gain, 0.0, 10.0); }
 
-std::string AngmomStabilizer::stackYaml() const { return angmomStackYaml(); }
+std::string AngmomStabilizer::stackYaml(const RobotFrames& frames) const { return angmomStackYaml(frames); }
 
 void AngmomStabilizer::start(const std::vector<std::string>&, const Eigen::VectorXd& q_home) {
   q_home_ = q_home;

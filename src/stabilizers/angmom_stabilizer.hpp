@@ -21,7 +21,7 @@ class AngmomStabilizer final : public Stabilizer {
  public:
   explicit AngmomStabilizer(AngmomParams params) : params_(params) {}
   const char* name() const override { return "angmom"; }
-  std::string stackYaml() const override;
+  std::string stackYaml(const RobotFrames& frames) const override;
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
   unsigned references() const override;
   void update(const RobotState& state, double dt, bool active, WholeBodyReferences& out) noexcept override;

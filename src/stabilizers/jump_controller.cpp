@@ -45,7 +45,7 @@ JumpController::JumpController(const std::string& mjcf_path, const data::Primiti
     : params_(params), replay_(primitive), stabilizer_(std::move(stabilizer)) {
   if (!stabilizer_) throw InputError("jump controller: no stabilizer");
   params_.wbc.stack_file.clear();
-  params_.wbc.stack_yaml = stabilizer_->stackYaml();
+  params_.wbc.stack_yaml = stabilizer_->stackYaml(params_.wbc.frames);
   wbc_ = std::make_unique<WholeBodyController>(mjcf_path, params_.wbc);
   wbc_->requireTasks(stabilizer_->references(), std::string("stabilizer '") + stabilizer_->name() + "'");
   refs_.resize(wbc_->ikModel().numJoints());

@@ -5,7 +5,7 @@
 
 namespace centaur {
 
-std::string NoStabilizer::stackYaml() const { return postureStackYaml(); }
+std::string NoStabilizer::stackYaml(const RobotFrames& frames) const { return postureStackYaml(frames); }
 
 void NoStabilizer::start(const std::vector<std::string>&, const Eigen::VectorXd& q_home) {
   q_home_ = q_home;

@@ -8,7 +8,7 @@ namespace centaur {
 class NoStabilizer final : public Stabilizer {
  public:
   const char* name() const override { return "none"; }
-  std::string stackYaml() const override;
+  std::string stackYaml(const RobotFrames& frames) const override;
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
   unsigned references() const override;
   void update(const RobotState& state, double dt, bool active, WholeBodyReferences& out) noexcept override;

@@ -106,7 +106,7 @@ void OcpPostureStabilizer::init() {
   q_arm_.setZero(7);
 }
 
-std::string OcpPostureStabilizer::stackYaml() const { return postureStackYaml(); }
+std::string OcpPostureStabilizer::stackYaml(const RobotFrames& frames) const { return postureStackYaml(frames); }
 
 void OcpPostureStabilizer::start(const std::vector<std::string>& names, const Eigen::VectorXd& q_home) {
   auto find = [&](const std::string& j) {

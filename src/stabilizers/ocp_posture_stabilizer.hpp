@@ -66,7 +66,7 @@ class OcpPostureStabilizer final : public Stabilizer {
   OcpPostureStabilizer(OcpPostureParams params, std::shared_ptr<const data::ArmTrajectory> trajectory);
 
   const char* name() const override { return "ocp"; }
-  std::string stackYaml() const override;
+  std::string stackYaml(const RobotFrames& frames) const override;
   /// Throws InputError if an arm joint of the plan (or its j_arm2_* mirror) is not among joint_names.
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
   unsigned references() const override;

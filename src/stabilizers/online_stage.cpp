@@ -32,6 +32,7 @@ std::unique_ptr<SupervisedController> makeOnlineController(const std::string& ta
                                                            const OnlineStageInputs& in) {
   if (task == "stand") {
     StandingParams params;
+    params.frames = in.frames;  // before read(): the robot's impedance groups are the keys of controller.gains
     params.read(section);
     section.finish();
     return std::make_unique<StandingController>(in.model_path, params);
@@ -40,6 +41,8 @@ std::unique_ptr<SupervisedController> makeOnlineController(const std::string& ta
     throw InputError("task '" + task + "' is not available (stand, squat-jump, half-squat-jump)");
   }
   JumpControllerParams params;
+  params.wbc.frames = in.frames;
+  params.wbc.impedance.frames = in.frames;  // before read(): the robot's impedance groups are the keys of gains
   params.read(section);
   std::unique_ptr<Stabilizer> stabilizer = makeStabilizer(in.stabilizer, section, in.flywheel_file,
                                                          in.flywheel_fallback);

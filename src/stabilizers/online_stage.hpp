@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "controller/robot_frames.hpp"
 #include "controller/robot_interface.hpp"
 #include "data/primitive.hpp"
 #include "stabilizers/make_stabilizer.hpp"
@@ -29,6 +30,7 @@ std::string controllerDefaultsYaml(const std::string& task);
 
 struct OnlineStageInputs {
   std::string model_path;          ///< MJCF of the controller's own robot model
+  RobotFrames frames;              ///< the robot's names, radii and impedance groups (default CENTAURO's)
   double dt = 0.001;               ///< [s] control period
   std::string stabilizer = "none"; ///< jumps: none | raibert | angmom | ocp
   std::string flywheel_file;       ///< jumps, ocp: arm-flywheel plan ("" = the `ocp.flywheel_file` key, else fallback)

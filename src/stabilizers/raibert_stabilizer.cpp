@@ -47,7 +47,7 @@ void RaibertParams::read(YamlReader& r) {
   }
 }
 
-std::string RaibertStabilizer::stackYaml() const { return postureStackYaml(); }
+std::string RaibertStabilizer::stackYaml(const RobotFrames& frames) const { return postureStackYaml(frames); }
 
 void RaibertStabilizer::start(const std::vector<std::string>& names, const Eigen::VectorXd& q_home) {
   idx_.clear();

@@ -35,7 +35,7 @@ class RaibertStabilizer final : public Stabilizer {
  public:
   explicit RaibertStabilizer(RaibertParams params) : params_(std::move(params)) {}
   const char* name() const override { return "raibert"; }
-  std::string stackYaml() const override;
+  std::string stackYaml(const RobotFrames& frames) const override;
   /// Throws InputError for an unknown joint name.
   void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) override;
   unsigned references() const override;

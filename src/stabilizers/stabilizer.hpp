@@ -26,8 +26,8 @@ class Stabilizer {
   virtual ~Stabilizer() = default;
   /// "none", "raibert", "angmom", "ocp".
   virtual const char* name() const = 0;
-  /// The IK stack this stabilizer runs with (YAML text in the format of docs/controller.md).
-  virtual std::string stackYaml() const = 0;
+  /// The IK stack this stabilizer runs with on the robot of `frames` (YAML text in the format of docs/controller.md).
+  virtual std::string stackYaml(const RobotFrames& frames) const = 0;
   /// Once, before the loop: joint names (RobotModel order) and the home posture [rad] (n).
   virtual void start(const std::vector<std::string>& joint_names, const Eigen::VectorXd& q_home) = 0;
   /// The WholeBodyReferences bits update() may set.

@@ -5,12 +5,15 @@
 //                         is what differs).
 //   angmomStackYaml():    (sum_i Pelvis->Foot_i) / World->Pelvis / (AngMom + Posture) << (limits)
 //                         eq. (box_stack_angular_momentum), the momentum task on the shoulder and elbow joints.
-// Feet: pelvis -> wheel centre positions (tasks wheel_1..wheel_4), gain 20 1/s.
+// Feet: base -> foot centre positions (tasks wheel_1..wheel_4), gain 20 1/s. The robot's names come from `frames`
+// (CENTAURO's by default: pelvis, wheel_centre_1..4, the shoulder and elbow joints j_arm*_1..4).
 #include <string>
+
+#include "controller/robot_frames.hpp"
 
 namespace centaur {
 
-std::string postureStackYaml();
-std::string angmomStackYaml();
+std::string postureStackYaml(const RobotFrames& frames = RobotFrames());
+std::string angmomStackYaml(const RobotFrames& frames = RobotFrames());
 
 }  // namespace centaur

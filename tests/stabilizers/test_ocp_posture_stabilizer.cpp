@@ -298,7 +298,7 @@ TEST(OcpPosture, UpdateThroughTheWholeBodyControllerAllocatesNothing) {
   p.blend_time = 0.2;
   OcpPostureStabilizer st(p, synthetic());
   WholeBodyParams wp;
-  wp.stack_yaml = st.stackYaml();
+  wp.stack_yaml = st.stackYaml(RobotFrames());
   WholeBodyController wbc(kModel, wp);
   RobotState s = stateWithPitchRate(r, 0.0);
   s.imu_acc = Eigen::Vector3d(0, 0, 9.81);

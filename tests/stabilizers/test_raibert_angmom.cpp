@@ -32,7 +32,7 @@ Eigen::VectorXd homeQ(const RobotModel& m) {
 std::unique_ptr<WholeBodyController> controllerFor(Stabilizer& stab, const RobotModel& m) {
   stab.start(m.jointNames(), m.homeJoints());
   WholeBodyParams wp;
-  wp.stack_yaml = stab.stackYaml();
+  wp.stack_yaml = stab.stackYaml(RobotFrames());
   return std::make_unique<WholeBodyController>(kModel, wp);
 }
 }  // namespace
@@ -135,7 +135,7 @@ TEST(Stabilizers, AReferenceWithoutItsTaskIsAnError) {
   AngmomStabilizer angmom{AngmomParams{}};
   RaibertStabilizer raibert{RaibertParams{}};
   WholeBodyParams wp;
-  wp.stack_yaml = raibert.stackYaml();
+  wp.stack_yaml = raibert.stackYaml(RobotFrames());
   WholeBodyController wbc(kModel, wp);
   EXPECT_NO_THROW(wbc.requireTasks(raibert.references(), "raibert"));
   try {
