@@ -142,8 +142,10 @@ SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
 
 SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string& file,
                         const std::vector<std::string>& overrides, const std::vector<std::string>& node_sections) {
-  YAML::Node base = loadYamlString(kSimConfigDefaults, "<simulation defaults>");
-  if (!scenario_defaults.empty()) base = mergeYaml(base, loadYamlString(scenario_defaults, "<scenario defaults>"));
+  const YAML::Node sim_defaults = loadYamlString(kSimConfigDefaults, "<simulation defaults>");
+  const YAML::Node scenario = scenario_defaults.empty() ? YAML::Node(YAML::NodeType::Map)
+                                                        : loadYamlString(scenario_defaults, "<scenario defaults>");
+  YAML::Node base = mergeYaml(sim_defaults, scenario);
   const YAML::Node user_file = file.empty() ? YAML::Node(YAML::NodeType::Map) : loadYamlFile(file);
   auto userLayers = [&](YAML::Node node) {
     node = mergeYaml(node, user_file);
@@ -162,11 +164,23 @@ SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string&
   } catch (const InputError& e) {
     throw InputError(label, "robot.name", e.what());
   }
-  const YAML::Node layer = simRobotLayer(robot, base);
-  const YAML::Node& cbase = base;  // const look-ups: yaml-cpp's non-const operator[] inserts the key
-  const YAML::Node gains = layer["controller"] ? layer["controller"]["gains"] : YAML::Node();
-  if (gains.IsDefined() && !gains.IsNull() && cbase["controller"]) base["controller"].remove("gains");
-  SimConfig c = parseSimConfig(userLayers(mergeYaml(base, layer)), label, node_sections);
+  // The robot's world values (pushed body, fall height, wall) go under the scenario's own choices (a squat jump
+  // moves the wall away); its controller values (radius, gains, Raibert joints) are facts of the robot and go over
+  // them, its impedance groups replacing the scenario's.
+  YAML::Node layer = simRobotLayer(robot, base);
+  const YAML::Node& clayer = layer;  // const look-ups: yaml-cpp's non-const operator[] inserts the key
+  YAML::Node controller = clayer["controller"] ? YAML::Clone(clayer["controller"]) : YAML::Node(YAML::NodeType::Map);
+  layer.remove("controller");
+  base = mergeYaml(mergeYaml(sim_defaults, layer), scenario);
+  const YAML::Node& cbase = base;
+  const YAML::Node& ccontroller = controller;
+  if (ccontroller["gains"] && cbase["controller"]) base["controller"].remove("gains");
+  if (controller.size() > 0) {
+    YAML::Node over(YAML::NodeType::Map);
+    over["controller"] = controller;
+    base = mergeYaml(base, over);
+  }
+  SimConfig c = parseSimConfig(userLayers(base), label, node_sections);
   c.robot_name = robot.description.name;
   c.robot_hash = robot.description.hash;
   c.frames = robot.frames;

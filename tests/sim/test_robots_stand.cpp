@@ -59,3 +59,30 @@ INSTANTIATE_TEST_SUITE_P(Robots, RobotStands, ::testing::ValuesIn(robot::robotNa
                          [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
 
 }  // namespace
+
+namespace {
+
+TEST(RobotLayer, ScenarioChoicesWinOverTheRobotsWorldAndTheRobotsControllerFactsWin) {
+  // The squat jump moves the wall out of the way for every robot; stand keeps the robot's own wall placement.
+  const sim::Scenario* squat = sim::findScenario("squat-jump");
+  ASSERT_NE(squat, nullptr);
+  for (const auto& name : robot::robotNames()) {
+    EXPECT_EQ(sim::loadSimConfig(squat->defaults_yaml, "", {"robot.name=" + name}).robot.wall_x, -20.0) << name;
+  }
+  const auto robot = robot::loadRobotWithFacts("b2w_z1");
+  const sim::SimConfig stand = sim::loadSimConfig(sim::standScenario().defaults_yaml, "", {"robot.name=b2w_z1"});
+  const double rear_x = 0.5 * (robot.facts->b_p_foot[2].x() + robot.facts->b_p_foot[3].x());
+  EXPECT_NEAR(stand.robot.wall_x, rear_x - 0.15 - robot.facts->foot_radius[2], 1e-4);
+  EXPECT_EQ(stand.robot.push.body, "base");
+  EXPECT_DOUBLE_EQ(stand.outcome.fall_height, 0.30);  // half of 0.6245 m, down to 5 cm
+  // The robot's impedance groups replace the scenario's (CENTAURO's group ankle_pitch is not the B2W's).
+  const YAML::Node gains = stand.effective["controller"]["gains"];
+  EXPECT_TRUE(gains["knee"]);
+  EXPECT_FALSE(gains["ankle_pitch"]);
+  // CENTAURO's layer is empty: its effective configuration is the defaults'.
+  const sim::SimConfig centauro = sim::loadSimConfig(sim::standScenario().defaults_yaml, "", {});
+  EXPECT_EQ(centauro.robot.wall_x, -0.578);
+  EXPECT_EQ(centauro.effective["controller"]["gains"]["leg"]["kp"].Scalar(), "1000.0");
+}
+
+}  // namespace
