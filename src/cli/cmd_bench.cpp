@@ -27,8 +27,11 @@
 #include "common/error.hpp"
 #include "common/stats.hpp"
 #include "controller/whole_body_controller.hpp"
+#include "stabilizers/stabilizer_stacks.hpp"
 #include "sim/compare_runner.hpp"
+#include "robot/robot_registry.hpp"
 #include "sim/mujoco_robot.hpp"
+#include "sim/robot_setup.hpp"
 #include "sim/sim_config.hpp"
 
 namespace centaur::cli {
@@ -45,6 +48,7 @@ struct BenchArgs {
   std::vector<std::string> jumps = {"squat-jump", "half-squat-jump"};
   std::vector<std::string> modes = {"none", "raibert", "angmom", "ocp"};
   std::vector<std::string> sets;  // planner: overrides of both jumps' configuration
+  std::string robot;              // tick: the robot (models/NAME/ or a robot.yaml); "" = the default
 };
 
 // Times every tick() (and the HQP part of it) of the wrapped controller into preallocated buffers.
@@ -71,11 +75,13 @@ class TimedController final : public Controller {
 };
 
 nlohmann::json benchTick(const BenchArgs& a) {
-  sim::SimConfig cfg = sim::loadSimConfig("", "", {});
+  const std::string robot_name = a.robot.empty() ? std::string(robot::kDefaultRobot) : a.robot;
+  sim::SimConfig cfg = sim::loadSimConfig("", "", {"robot.name=" + robot_name});
+  const sim::SimRobot described = sim::loadSimRobot(robot_name);
   std::string stack = a.stack;
-  if (stack.empty()) {  // <source>/config/stack_stand.yaml, next to <source>/models/centauro/centauro.xml
-    const std::string model = sim::defaultModelPath();
-    stack = model.substr(0, model.size() - std::string("models/centauro/centauro.xml").size()) +
+  const bool own_stack = stack.empty() && described.description.name == robot::kDefaultRobot;
+  if (own_stack) {  // CENTAURO's stand stack: <source>/config/stack_stand.yaml, next to <source>/models/
+    stack = robot::modelsDirectory().substr(0, robot::modelsDirectory().size() - std::string("models").size()) +
             "config/stack_stand.yaml";
   }
   sim::SimSettings settings = cfg.robot;
@@ -84,6 +90,12 @@ nlohmann::json benchTick(const BenchArgs& a) {
   sim::MujocoRobot robot(settings);
   WholeBodyParams p;
   p.stack_file = stack;
+  // Another robot without --stack: the angular-momentum stabilizer's stack on its frames (same levels as CENTAURO's
+  // stand stack: feet / pelvis / momentum + posture).
+  if (stack.empty()) p.stack_yaml = angmomStackYaml(cfg.frames);
+  p.frames = cfg.frames;
+  p.impedance.frames = cfg.frames;
+  for (const auto& g : described.description.gains) p.impedance.group_gains[g.group] = {g.kp, g.kd};
   p.dt = robot.controlPeriodSeconds();
   WholeBodyController ctrl(cfg.robot.model_path, p);
   TimedController timed(ctrl, a.ticks);
@@ -97,7 +109,9 @@ nlohmann::json benchTick(const BenchArgs& a) {
   nlohmann::json j;
   j["target"] = "tick";
   j["ticks"] = a.ticks;
-  j["stack"] = stack;
+  j["robot"] = described.description.name;
+  j["dof"] = ctrl.ikModel().nv();
+  j["stack"] = stack.empty() ? std::string("angmom stack on the robot's frames") : stack;
   j["status"] = toString(ctrl.status());
   j["safe_ticks"] = ctrl.counters().safe_ticks;
   j["tick_us_median"] = median(timed.tick_us_);
@@ -250,7 +264,10 @@ const Registrar kBench{{"bench",
                               ->check(CLI::IsMember({"planner", "tick", "jump", "middleware"}));
                           sub.add_option("--ticks", a->ticks, "tick: control periods timed (1 ms each)")
                               ->check(CLI::Range(10, 1000000));
-                          sub.add_option("--stack", a->stack, "tick: stack YAML (default config/stack_stand.yaml)");
+                          sub.add_option("--stack", a->stack, "tick: stack YAML (default config/stack_stand.yaml; "
+                                                              "another robot: the angmom stack on its frames)");
+                          sub.add_option("--robot", a->robot,
+                                         "tick: the robot (models/NAME/ or a robot.yaml; default centauro)");
                           CLI::Option* repeat =
                               sub.add_option("--repeat", a->repeat,
                                              "planner: cold runs per case (default 5); jump: runs per (jump, mode) "

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 #include <sys/wait.h>
+#include "robot/robot_registry.hpp"
 #include "support/cli_run.hpp"
 
 namespace {
@@ -36,4 +37,17 @@ TEST(BenchTickCli, PrintsTickAndQpTimesAsTheLastJsonLine) {
 TEST(BenchTickCli, MissingStackFileIsBadInput) {
   const CliRun r = run("bench tick --ticks 10 --stack /nonexistent/stack.yaml");
   EXPECT_EQ(r.code, 2);
+}
+
+TEST(BenchTickCli, EveryShippedRobotTicksStandingUnderTheWholeBodyController) {
+  for (const std::string& robot : centaur::robot::robotNames()) {
+    const CliRun r = run("bench tick --ticks 300 --robot " + robot + " --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(r.last_line);
+    EXPECT_EQ(j.at("robot"), robot);
+    EXPECT_EQ(j.at("status"), "ok") << robot;
+    EXPECT_EQ(j.at("safe_ticks"), 0) << robot;
+    EXPECT_LT(j.at("pelvis_drift_m").get<double>(), 0.01) << robot;  // the stack holds the robot where it stands
+  }
+  EXPECT_EQ(run("bench tick --ticks 10 --robot no-such-robot").code, 2);
 }
