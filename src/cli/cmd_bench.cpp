@@ -80,10 +80,7 @@ nlohmann::json benchTick(const BenchArgs& a) {
   const sim::SimRobot described = sim::loadSimRobot(robot_name);
   std::string stack = a.stack;
   const bool own_stack = stack.empty() && described.description.name == robot::kDefaultRobot;
-  if (own_stack) {  // CENTAURO's stand stack: <source>/config/stack_stand.yaml, next to <source>/models/
-    stack = robot::modelsDirectory().substr(0, robot::modelsDirectory().size() - std::string("models").size()) +
-            "config/stack_stand.yaml";
-  }
+  if (own_stack) stack = std::string(CENTAUR_SOURCE_DIR) + "/config/stack_stand.yaml";  // CENTAURO's stand stack
   sim::SimSettings settings = cfg.robot;
   settings.visual_geoms = false;  // as `simulate stand` without --video/--snapshot
   settings.solver = "cg";         // and its contact solver

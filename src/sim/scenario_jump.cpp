@@ -32,7 +32,10 @@ data::Primitive loadOrPlan(const std::string& name, const std::string& file, con
   }
   std::fprintf(stderr, "planning %s with the default settings (give --primitive F.h5 to reuse a plan) ...\n",
                name.c_str());
-  const planner::JumpConfig cfg = planner::loadJumpConfig(name, "", {"robot=" + robot_name});
+  // The default robot needs no override (the plan's configuration then reads "<defaults>", as it always has).
+  const std::vector<std::string> sets =
+      robot_name == robot::kDefaultRobot ? std::vector<std::string>{} : std::vector<std::string>{"robot=" + robot_name};
+  const planner::JumpConfig cfg = planner::loadJumpConfig(name, "", sets);
   const planner::JumpProblem problem(cfg);
   const planner::SolveResult result = problem.solve(false);
   if (!result.info.solved()) {

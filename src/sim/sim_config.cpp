@@ -50,8 +50,6 @@ log:
 controller: {}            # the scenario controller's own section (see docs/sim.md)
 )";
 
-std::string defaultModelPath() { return std::string(CENTAUR_SOURCE_DIR) + "/models/centauro/centauro.xml"; }
-
 SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
                          const std::vector<std::string>& node_sections) {
   SimConfig c;
@@ -61,7 +59,7 @@ SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
   r.get("duration", c.duration, 0.001, 3600.0);
   std::string model;
   r.get("model", model);
-  c.robot.model_path = model.empty() ? defaultModelPath() : model;
+  c.robot.model_path = model;  // "": the robot's MJCF, filled in by loadSimConfig
   {
     auto p = r.child("physics");
     p.get("timestep", c.robot.timestep, 1e-5, 0.01);
@@ -184,7 +182,7 @@ SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string&
   c.robot_name = robot.description.name;
   c.robot_hash = robot.description.hash;
   c.frames = robot.frames;
-  if (YAML::Node m = c.effective["model"]; !m || m.Scalar().empty()) c.robot.model_path = robot.description.mjcf_path;
+  if (c.robot.model_path.empty()) c.robot.model_path = robot.description.mjcf_path;
   if (!robot.description.scene_in_mjcf) c.robot.scene_xml = sceneXml(robot.description);
   c.robot.keyframe = robot.description.home;
   c.robot.imu_orientation = robot.description.imu.orientation;

@@ -54,11 +54,10 @@ SimConfig loadSimConfig(const std::string& scenario_defaults, const std::string&
 /// A strict reader of the `controller:` section (prefix "controller"), for the scenario's controller.
 YamlReader controllerSection(const SimConfig& config);
 
-/// Parse the non-controller sections of an already merged node (used by loadSimConfig).
+/// Parse the non-controller sections of an already merged node (used by loadSimConfig, which then fills in what
+/// comes from the robot: an empty `model` becomes the robot's MJCF).
 SimConfig parseSimConfig(const YAML::Node& effective, const std::string& label,
                          const std::vector<std::string>& node_sections = {});
 
-/// Default MJCF: <source>/models/centauro/centauro.xml.
-std::string defaultModelPath();
 
 }  // namespace centaur::sim
